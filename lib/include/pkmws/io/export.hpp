@@ -1,0 +1,60 @@
+// Boundary export (SPEC §2.5): SVG with true arcs, DXF with ARC/LINE entities,
+// WKT / GeoJSON polylines at a stated tolerance, CSV of the boundary curves.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "pkmws/geometry/region.hpp"
+#include "pkmws/io/mechanism_file.hpp"
+
+namespace pkmws::io {
+
+enum class ExportFormat { svg, dxf, wkt, geojson, csv };
+
+/// "svg" | "dxf" | "wkt" | "geojson" | "csv"; throws InputError otherwise.
+ExportFormat parse_export_format(std::string_view name);
+std::string_view format_name(ExportFormat format);
+
+struct ExportOptions {
+  /// Max deviation of polylines from the exact boundary (WKT, GeoJSON), in the
+  /// file's length unit; <= 0 picks 1e-6 of the bounding-box diagonal.
+  double tolerance = 0.0;
+  /// Components smaller than this area are dropped (near-tangency slivers);
+  /// <= 0 picks 1e-12 of the bounding-box area.
+  double min_area = 0.0;
+};
+
+/// Resolved tolerance / sliver threshold for a region (see ExportOptions).
+double effective_tolerance(const geometry::Region& region, const ExportOptions& options);
+double effective_min_area(const geometry::Region& region, const ExportOptions& options);
+
+/// Bare SVG of the region's boundary with true arcs (path commands A).
+std::string to_svg(const geometry::Region& region, const ExportOptions& options = {});
+/// DXF (R12 ASCII) with LINE and ARC entities on layers BOUNDARY / HOLES.
+std::string to_dxf(const geometry::Region& region, const ExportOptions& options = {});
+/// WKT MULTIPOLYGON of polylines within the tolerance.
+std::string to_wkt(const geometry::Region& region, const ExportOptions& options = {});
+/// GeoJSON FeatureCollection with one MultiPolygon feature.
+std::string to_geojson(const geometry::Region& region, const ExportOptions& options = {});
+/// CSV, one row per boundary curve:
+/// component,loop,hole,kind,x0,y0,x1,y1,cx,cy,r,sweep_deg
+std::string to_csv(const geometry::Region& region, const ExportOptions& options = {});
+
+/// The paper-style figure of a mechanism's workspace: filled region with true
+/// arcs, axes with ticks and a scale bar, the mechanism drawn at `pose`
+/// (guides dashed, rods, joints), title and area in the caption.
+struct FigureOptions {
+  std::string title;
+  std::string caption;  // e.g. "area = 73 205.4 mm²"
+  bool draw_mechanism = true;
+};
+std::string workspace_figure(const MechanismFile& file, const geometry::Region& region,
+                             const mechanisms::Pose& pose, const FigureOptions& options);
+
+/// Writes `content` to `path` atomically (temporary file + rename), so a failure
+/// never leaves a partial file behind. Throws InputError when it cannot.
+void write_file_atomic(const std::filesystem::path& path, std::string_view content);
+
+}  // namespace pkmws::io

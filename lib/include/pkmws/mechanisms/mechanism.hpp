@@ -1,0 +1,122 @@
+// The interface every planar parallel mechanism implements. Values are in the
+// mechanism file's length unit and in radians; the CLI converts angles to degrees.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pkmws/geometry/region.hpp"
+#include "pkmws/geometry/types.hpp"
+
+namespace pkmws::mechanisms {
+
+using geometry::Point;
+
+/// Platform pose: position of the platform point P and orientation phi (radians;
+/// ignored by 2-DOF mechanisms; for the 1-DOF Pi-joint `phi` is the crank angle).
+struct Pose {
+  double x = 0.0;
+  double y = 0.0;
+  double phi = 0.0;
+};
+
+/// What a joint value is, so that output can be labelled and converted.
+struct JointInfo {
+  std::string name;   // e.g. "p1", "theta1"
+  bool angle = false; // radians inside, degrees in files and output
+};
+
+/// One inverse-kinematics solution (one working mode).
+struct JointSolution {
+  std::string mode;            // working mode label, e.g. "(-1,-1)"
+  std::vector<double> joints;  // one per actuator
+  bool valid = false;          // within strokes/limits
+  std::string reason;          // why not valid (empty when valid)
+};
+
+/// One direct-kinematics solution (one assembly mode).
+struct PoseSolution {
+  std::string mode;                     // assembly mode label
+  Pose pose;
+  std::vector<Point> platform_points;   // 3-DOF: B1, B2, B3 in the base frame
+  bool valid = false;                   // consistent with the working mode / limits
+  std::string reason;
+};
+
+/// Load applied at the platform point P: force of norm `force_N` in any
+/// direction, moment +-`moment_Nm` (SPEC §1.5).
+struct Load {
+  double force_N = 0.0;
+  double moment_Nm = 0.0;
+};
+
+/// Optional criteria from the mechanism file (SPEC §3.1).
+struct Criteria {
+  std::optional<double> max_pressure_angle_deg;
+  std::optional<double> max_reaction_N;
+  std::optional<Load> load;
+  std::optional<double> max_velocity_ratio;
+  bool any() const {
+    return max_pressure_angle_deg || max_reaction_N || max_velocity_ratio;
+  }
+};
+
+/// Every criterion at one pose, for one working/assembly mode (`pkmws eval`).
+struct Evaluation {
+  std::string mode;
+  bool reachable = false;
+  std::string reason;                       // why not reachable
+  std::vector<double> joints;
+  double jacobian_det = 0.0;                // det of dq/dx (inverse-kinematic Jacobian)
+  double condition_number = 0.0;            // 2-norm condition number of dq/dx (inf if singular)
+  bool singular = false;
+  std::string singularity;                  // "", "type1" (serial), "type2" (parallel), "both"
+  std::vector<double> pressure_angle_deg;   // one per leg
+  std::vector<double> reactions_N;          // R_i,max per leg for the load (empty without load)
+  std::optional<double> velocity_ratio;     // actuator speed / tool speed, worst direction
+  std::vector<std::pair<std::string, double>> extra;  // mechanism-specific figures
+};
+
+/// A mechanism drawn at one pose, for figures.
+struct Drawing {
+  struct Segment { Point a, b; };
+  std::vector<Segment> guides;     // fixed guides / base lines (drawn dashed)
+  std::vector<Segment> links;      // rods, cranks, platform sides
+  std::vector<Point> joints;       // revolute joints
+  std::vector<Point> sliders;      // prismatic joints (sliders)
+  std::vector<Point> base_points;  // fixed joints
+  Point tool;                      // the platform point P
+};
+
+class Mechanism {
+ public:
+  virtual ~Mechanism() = default;
+
+  /// File keyword: "moma", "five_bar", ...
+  virtual std::string_view kind() const = 0;
+  /// Degrees of freedom of the platform (1, 2 or 3).
+  virtual int dof() const = 0;
+  virtual std::vector<JointInfo> joints() const = 0;
+
+  /// Every working mode at a pose, each flagged valid or not with the reason.
+  virtual std::vector<JointSolution> inverse(const Pose& pose) const = 0;
+  /// Every assembly mode for joint values (size dof()), flagged valid or not.
+  virtual std::vector<PoseSolution> direct(std::span<const double> joints) const = 0;
+  /// Every criterion at a pose, one entry per working/assembly mode.
+  virtual std::vector<Evaluation> evaluate(const Pose& pose, const Criteria& criteria) const = 0;
+
+  /// Exact reachable workspace (for 3-DOF: at the file's constant orientation).
+  virtual geometry::Region workspace() const = 0;
+  /// Point-membership test of the reachable workspace in double arithmetic
+  /// (the grid baseline's test; SPEC §2.4).
+  virtual bool reachable(const Pose& pose) const = 0;
+  /// The mechanism at a pose, for figures.
+  virtual Drawing draw(const Pose& pose) const = 0;
+  /// A bounding box that contains the whole reachable workspace.
+  virtual geometry::Box bounds() const = 0;
+};
+
+}  // namespace pkmws::mechanisms

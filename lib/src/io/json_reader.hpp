@@ -1,0 +1,65 @@
+// Strict reading of one JSON object with the field's path in every error
+// message; fields that were never read are reported as unknown by finish().
+// Private to the library.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "pkmws/geometry/types.hpp"
+#include "pkmws/io/mechanism_file.hpp"
+
+namespace pkmws::io::detail {
+
+class JsonReader {
+ public:
+  /// `path` names this object in messages ("" for the document, "legs[0]", ...).
+  JsonReader(const nlohmann::json& object, std::string path);
+
+  bool has(const std::string& key) const;
+  /// Required fields (throw InputError when missing or of the wrong type).
+  double number(const std::string& key);
+  double positive(const std::string& key);      // > 0
+  double non_negative(const std::string& key);  // >= 0
+  int integer(const std::string& key);
+  int sign(const std::string& key);             // -1 or +1
+  std::string string(const std::string& key);
+  std::string one_of(const std::string& key, const std::vector<std::string>& allowed);
+  geometry::Point point(const std::string& key);           // [x, y]
+  std::vector<geometry::Point> points(const std::string& key, std::size_t count);
+  std::vector<double> numbers(const std::string& key, std::size_t count);
+  /// [min, max] with min < max.
+  std::array<double, 2> interval(const std::string& key);
+  JsonReader object(const std::string& key);
+  std::vector<JsonReader> objects(const std::string& key, std::size_t count);
+  /// The raw value (marked as read).
+  const nlohmann::json& raw(const std::string& key);
+
+  /// Optional variants: std::nullopt when the key is absent.
+  std::optional<double> optional_number(const std::string& key);
+  std::optional<double> optional_positive(const std::string& key);
+  std::optional<std::string> optional_string(const std::string& key);
+
+  /// Throws InputError naming the first field that was never read.
+  void finish() const;
+
+  /// "path.key" (or "key" at the top level).
+  std::string field(const std::string& key) const;
+  const std::string& path() const { return path_; }
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
+
+ private:
+  const nlohmann::json& get(const std::string& key);
+  static double as_number(const nlohmann::json& value, const std::string& where);
+
+  const nlohmann::json& object_;
+  std::string path_;
+  std::set<std::string> read_;
+};
+
+}  // namespace pkmws::io::detail

@@ -1,0 +1,99 @@
+#include "pkmws/io/mechanism_file.hpp"
+
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+
+#include "io/loaders.hpp"
+
+namespace pkmws::io {
+
+namespace {
+
+using Loader = std::function<detail::MechanismPtr(detail::JsonReader&)>;
+
+const std::map<std::string, Loader>& loaders() {
+  static const std::map<std::string, Loader> table = {
+      {"moma", detail::load_moma},
+  };
+  return table;
+}
+
+mechanisms::Criteria read_criteria(detail::JsonReader& doc) {
+  mechanisms::Criteria c;
+  if (!doc.has("criteria")) return c;
+  auto r = doc.object("criteria");
+  if (r.has("max_pressure_angle_deg")) {
+    const double a = r.number("max_pressure_angle_deg");
+    if (!(a > 0.0 && a < 90.0)) r.fail("max_pressure_angle_deg", "must lie in (0, 90) degrees");
+    c.max_pressure_angle_deg = a;
+  }
+  c.max_reaction_N = r.optional_positive("max_reaction_N");
+  c.max_velocity_ratio = r.optional_positive("max_velocity_ratio");
+  if (r.has("load")) {
+    auto l = r.object("load");
+    mechanisms::Load load;
+    load.force_N = l.non_negative("force_N");
+    load.moment_Nm = l.has("moment_Nm") ? l.non_negative("moment_Nm") : 0.0;
+    l.finish();
+    c.load = load;
+  }
+  if (c.max_reaction_N && !c.load) r.fail("max_reaction_N", "needs criteria.load");
+  r.finish();
+  return c;
+}
+
+}  // namespace
+
+MechanismFile parse_mechanism(const nlohmann::json& document, const std::string& origin) {
+  detail::JsonReader doc(document, "");
+  MechanismFile file;
+  file.path = origin;
+  file.name = doc.string("name");
+  std::vector<std::string> kinds;
+  for (const auto& [k, _] : loaders()) kinds.push_back(k);
+  file.mechanism = doc.one_of("mechanism", kinds);
+  file.units = doc.one_of("units", {"mm", "m"});
+  file.description = doc.optional_string("description").value_or("");
+  if (doc.has("source")) {
+    const auto& s = doc.raw("source");
+    if (!s.is_object() && !s.is_string()) doc.fail("source", "expected an object or a string");
+    file.source = s;
+  }
+  file.criteria = read_criteria(doc);
+  file.model = loaders().at(file.mechanism)(doc);
+  doc.finish();
+  return file;
+}
+
+MechanismFile load_mechanism(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    throw InputError(path.string() + ": no such file");
+  }
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(path.string() + ": is a directory, expected a mechanism file");
+  }
+  std::ifstream in(path);
+  if (!in) throw InputError(path.string() + ": cannot be read");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(buffer.str());
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.what() is "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
+    std::string what = e.what();
+    const auto pos = what.find("] ");
+    throw InputError(path.string() + ": malformed JSON: " +
+                     (pos == std::string::npos ? what : what.substr(pos + 2)));
+  }
+  try {
+    return parse_mechanism(document, path.string());
+  } catch (const InputError& e) {
+    throw InputError(path.string() + ": " + e.what());
+  }
+}
+
+}  // namespace pkmws::io
