@@ -50,6 +50,7 @@ MechanismFile parse_mechanism(const nlohmann::json& document, const std::string&
   detail::JsonReader doc(document, "");
   MechanismFile file;
   file.path = origin;
+  file.document = document;
   file.name = doc.string("name");
   std::vector<std::string> kinds;
   for (const auto& [k, _] : loaders()) kinds.push_back(k);

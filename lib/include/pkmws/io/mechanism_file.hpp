@@ -27,6 +27,7 @@ struct MechanismFile {
   std::string description;
   nlohmann::json source;        // paper, figure, notes (free-form object), null if absent
   mechanisms::Criteria criteria;
+  nlohmann::json document;      // the validated document as read
   std::shared_ptr<const mechanisms::Mechanism> model;
 };
 
