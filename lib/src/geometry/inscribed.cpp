@@ -11,18 +11,22 @@ namespace pkmws::geometry {
 
 namespace {
 
-// Is the direction of q - c within the arc's sweep?
-bool within_sweep(const Curve& c, Point q) {
+// Is the polar angle `a` (about the arc's centre) within the arc's sweep?
+bool within_sweep_angle(const Curve& c, double a) {
   const double a0 = std::atan2(c.source.y - c.center.y, c.source.x - c.center.x);
-  const double aq = std::atan2(q.y - c.center.y, q.x - c.center.x);
   const double s = c.sweep();
-  double rel = std::remainder(aq - a0, 2.0 * std::numbers::pi);  // (-pi, pi]
+  double rel = std::remainder(a - a0, 2.0 * std::numbers::pi);  // [-pi, pi]
   if (s > 0 && rel < 0) rel += 2.0 * std::numbers::pi;
   if (s < 0 && rel > 0) rel -= 2.0 * std::numbers::pi;
   return std::abs(rel) <= std::abs(s);
 }
 
-// Crossings of the ray {(x, p.y) : x > p.x} with one curve (half-open rule on y).
+bool within_sweep(const Curve& c, Point q) {
+  return within_sweep_angle(c, std::atan2(q.y - c.center.y, q.x - c.center.x));
+}
+
+// Crossings of the ray {(x, p.y + delta) : x > p.x}, delta an infinitesimal
+// upward shift (the half-open rule), with one curve.
 int crossings(const Curve& c, Point p) {
   if (c.kind == Curve::Kind::segment) {
     const Point a = c.source, b = c.target;
@@ -34,16 +38,12 @@ int crossings(const Curve& c, Point p) {
   if (std::abs(dy) >= c.radius) return 0;
   const double h = std::sqrt(c.radius * c.radius - dy * dy);
   int n = 0;
-  for (double x : {c.center.x - h, c.center.x + h}) {
+  for (int side : {-1, 1}) {
+    const double x = c.center.x + side * h;
     if (x <= p.x) continue;
-    const Point q{x, p.y};
-    if (!within_sweep(c, q)) continue;
-    // Half-open rule at the arc's endpoints, as for segments: count an end only
-    // when the curve leaves upwards from it.
-    const bool at_source = std::abs(q.y - c.source.y) == 0.0 && std::abs(q.x - c.source.x) < 1e-12 * c.radius;
-    const bool at_target = std::abs(q.y - c.target.y) == 0.0 && std::abs(q.x - c.target.x) < 1e-12 * c.radius;
-    if (at_source || at_target) continue;
-    ++n;
+    // Moving up along the circle turns the angle ccw on the right half, cw on the left.
+    const double a = std::atan2(dy, side * h) + side * 1e-9;
+    if (within_sweep_angle(c, a)) ++n;
   }
   return n;
 }
