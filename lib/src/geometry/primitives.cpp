@@ -8,7 +8,12 @@
 #include <stdexcept>
 #include <string>
 
+// GCC 12 at -O2 reports a false -Wmaybe-uninitialized inside CGAL's
+// is_simple_2 (Polygon_2_algorithms_impl.h); the warning is not ours.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <CGAL/Polygon_2.h>
+#pragma GCC diagnostic pop
 
 #include "detail/cgal_kernel.hpp"
 

@@ -30,6 +30,9 @@ struct ExportOptions {
 double effective_tolerance(const geometry::Region& region, const ExportOptions& options);
 double effective_min_area(const geometry::Region& region, const ExportOptions& options);
 
+/// SVG path data of the boundary in mathematical coordinates (y up): M, L,
+/// and A commands (true arcs), one closed subpath per loop; fill with evenodd.
+std::string svg_path(const geometry::Region& region, const ExportOptions& options = {});
 /// Bare SVG of the region's boundary with true arcs (path commands A).
 std::string to_svg(const geometry::Region& region, const ExportOptions& options = {});
 /// DXF (R12 ASCII) with LINE and ARC entities on layers BOUNDARY / HOLES.

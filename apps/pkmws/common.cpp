@@ -1,0 +1,85 @@
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+
+#include "cli.hpp"
+#include "pkmws/geometry/inscribed.hpp"
+
+namespace pkmws::cli {
+
+double elapsed_ms(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void print_json(const Json& j) { std::cout << j.dump(2) << "\n"; }
+
+double parse_number(const std::string& text, const std::string& what) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) {
+    throw io::InputError(what + ": expected a number, got \"" + text + "\"");
+  }
+  return v;
+}
+
+geometry::Region workspace_of(const io::MechanismFile& file) {
+  try {
+    return file.model->workspace();
+  } catch (const std::exception& e) {
+    throw io::InputError(file.path + ": " + e.what());
+  }
+}
+
+std::string area_unit(const io::MechanismFile& file) { return file.units + "²"; }
+
+namespace {
+
+Json point_json(geometry::Point p) { return Json::array({p.x, p.y}); }
+
+Json box_json(const geometry::Box& b) {
+  return Json{{"min", point_json(b.min)}, {"max", point_json(b.max)}};
+}
+
+double precision_for(const geometry::Box& b) { return 1e-5 * std::max(b.width(), b.height()); }
+
+}  // namespace
+
+mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Region& region) {
+  const auto comps = region.components();
+  if (comps.empty()) {
+    const auto b = file.model->bounds();
+    return {(b.min.x + b.max.x) / 2, (b.min.y + b.max.y) / 2, 0.0};
+  }
+  std::size_t k = 0;
+  for (std::size_t i = 1; i < comps.size(); ++i) {
+    if (comps[i].area > comps[k].area) k = i;
+  }
+  const auto& c = comps[k];
+  geometry::Point p = c.centroid;
+  if (!geometry::inside(c, p) || geometry::distance_to_boundary(c, p) < 0.05 * std::sqrt(c.area)) {
+    p = geometry::largest_inscribed_circle(c, 1e-3 * std::sqrt(c.area)).center;
+  }
+  return {p.x, p.y, 0.0};
+}
+
+Json region_report(const geometry::Region& region, double min_area) {
+  Json comps = Json::array();
+  double area = 0.0;
+  for (const auto& c : region.components(min_area)) {
+    const auto circle = geometry::largest_inscribed_circle(c, precision_for(c.bbox));
+    comps.push_back(Json{{"area", c.area},
+                         {"perimeter", c.perimeter},
+                         {"holes", c.holes.size()},
+                         {"bbox", box_json(c.bbox)},
+                         {"centroid", point_json(c.centroid)},
+                         {"inscribed_circle",
+                          {{"center", point_json(circle.center)},
+                           {"radius", circle.radius},
+                           {"radius_upper", circle.radius_upper}}}});
+    area += c.area;
+  }
+  return Json{{"area", area}, {"components", comps}, {"bbox", box_json(region.bbox())},
+              {"boundary_curves", region.curve_count()}};
+}
+
+}  // namespace pkmws::cli

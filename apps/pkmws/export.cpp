@@ -1,0 +1,62 @@
+// pkmws export FILE --format svg|dxf|wkt|geojson|csv -o OUT (SPEC §4).
+#include <cmath>
+#include <cstdio>
+
+#include "cli.hpp"
+#include "pkmws/io/export.hpp"
+
+namespace pkmws::cli {
+
+void add_export(CLI::App& app, std::vector<Command>& commands) {
+  auto* sub = app.add_subcommand("export", "Write the workspace boundary (svg, dxf, wkt, geojson, csv)");
+  struct Args {
+    std::string file, format, out;
+    double tolerance = 0.0;
+    bool bare = false;
+  };
+  auto a = std::make_shared<Args>();
+  sub->add_option("FILE", a->file, "Mechanism file (JSON)")->required();
+  sub->add_option("--format,-f", a->format, "svg | dxf | wkt | geojson | csv")->required();
+  sub->add_option("-o,--output", a->out, "Output file")->required();
+  sub->add_option("--tolerance", a->tolerance,
+                  "Max deviation of polylines (wkt, geojson) in the file's unit; "
+                  "default 1e-6 of the bounding-box diagonal");
+  sub->add_flag("--bare", a->bare, "svg: the boundary only, without axes and mechanism");
+  commands.push_back({sub, [a] {
+    const io::ExportFormat format = io::parse_export_format(a->format);
+    if (a->tolerance < 0.0 || !std::isfinite(a->tolerance)) {
+      throw io::InputError("--tolerance: must be a positive length");
+    }
+    const io::MechanismFile mech = io::load_mechanism(a->file);
+    const geometry::Region region = workspace_of(mech);
+    if (region.empty()) {
+      throw io::InputError(a->file + ": the workspace is empty (impossible geometry): nothing to export");
+    }
+    io::ExportOptions options;
+    options.tolerance = a->tolerance;
+    std::string content;
+    switch (format) {
+      case io::ExportFormat::svg:
+        if (a->bare) {
+          content = io::to_svg(region, options);
+        } else {
+          io::FigureOptions figure;
+          figure.title = mech.name;
+          char caption[256];
+          std::snprintf(caption, sizeof caption, "exact workspace area = %.10g %s", region.area(),
+                        area_unit(mech).c_str());
+          figure.caption = caption;
+          content = io::workspace_figure(mech, region, sample_pose(mech, region), figure);
+        }
+        break;
+      case io::ExportFormat::dxf: content = io::to_dxf(region, options); break;
+      case io::ExportFormat::wkt: content = io::to_wkt(region, options); break;
+      case io::ExportFormat::geojson: content = io::to_geojson(region, options); break;
+      case io::ExportFormat::csv: content = io::to_csv(region, options); break;
+    }
+    io::write_file_atomic(a->out, content);
+    return 0;
+  }});
+}
+
+}  // namespace pkmws::cli

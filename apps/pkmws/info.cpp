@@ -1,0 +1,26 @@
+// pkmws info FILE: the parsed mechanism.
+#include "cli.hpp"
+
+namespace pkmws::cli {
+
+void add_info(CLI::App& app, std::vector<Command>& commands) {
+  auto* sub = app.add_subcommand("info", "Print the parsed mechanism");
+  auto file = std::make_shared<std::string>();
+  sub->add_option("FILE", *file, "Mechanism file (JSON)")->required();
+  commands.push_back({sub, [file] {
+    const auto mech = io::load_mechanism(*file);
+    Json out = mech.document;
+    Json joints = Json::array();
+    for (const auto& j : mech.model->joints()) {
+      joints.push_back(Json{{"name", j.name}, {"unit", j.angle ? "deg" : mech.units}});
+    }
+    const auto b = mech.model->bounds();
+    out["derived"] = Json{{"dof", mech.model->dof()},
+                          {"joints", joints},
+                          {"bounds", {{"min", {b.min.x, b.min.y}}, {"max", {b.max.x, b.max.y}}}}};
+    print_json(out);
+    return 0;
+  }});
+}
+
+}  // namespace pkmws::cli

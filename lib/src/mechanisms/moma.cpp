@@ -1,0 +1,325 @@
+// MOMA (seed 000): inverse kinematics eq. 5-6, robust direct kinematics, the
+// paper's closed form eq. 9-12 as a cross-check, Jacobians, singularities,
+// pressure angle and the exact workspace (intersection of two leg bands).
+#include "pkmws/mechanisms/moma.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
+#include "pkmws/geometry/primitives.hpp"
+
+namespace pkmws::mechanisms {
+
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr double rad2deg = 180.0 / std::numbers::pi;
+// Relative tolerance of the singularity tests and of stroke limits.
+constexpr double singular_tol = 1e-9;
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string mode_label(int b1, int b2) {
+  return "(" + std::to_string(b1) + "," + std::to_string(b2) + ")";
+}
+
+}  // namespace
+
+Moma::Moma(std::array<MomaLeg, 2> legs) : legs_(legs) {
+  for (int i = 0; i < 2; ++i) {
+    const MomaLeg& l = legs_[i];
+    const std::string leg = "leg " + std::to_string(i + 1) + ": ";
+    if (!(l.rod_length > 0.0) || !std::isfinite(l.rod_length)) {
+      throw std::invalid_argument(leg + "rod length must be positive");
+    }
+    if (!(l.stroke_min < l.stroke_max) || !std::isfinite(l.stroke_min) || !std::isfinite(l.stroke_max)) {
+      throw std::invalid_argument(leg + "stroke must be [min, max] with min < max");
+    }
+    if (l.branch != 1 && l.branch != -1) throw std::invalid_argument(leg + "branch must be -1 or 1");
+    if (!std::isfinite(l.guide_angle) || !std::isfinite(l.reference.x) || !std::isfinite(l.reference.y)) {
+      throw std::invalid_argument(leg + "non-finite guide");
+    }
+  }
+}
+
+Point Moma::guide_direction(int leg) const {
+  // The same rational direction the exact workspace uses (docs/theory/regions.md).
+  return geometry::rational_direction(legs_[leg].guide_angle).unit();
+}
+
+Point Moma::slider(int leg, double p) const {
+  return legs_[leg].reference + p * guide_direction(leg);
+}
+
+std::optional<double> Moma::inverse_leg(int leg, Point p, int branch) const {
+  const MomaLeg& l = legs_[leg];
+  const Point a = guide_direction(leg);
+  const Point w = p - l.reference;
+  const double b = dot(a, w);  // seed 000 eq. 6: B_i = a_i . (P - R_i)
+  // B^2 - C = l^2 - (a x w)^2 (eq. 5's discriminant, in a cancellation-free form)
+  const double across = std::abs(cross(a, w));
+  const double disc = (l.rod_length - across) * (l.rod_length + across);
+  if (disc < 0.0) return std::nullopt;
+  return b + branch * std::sqrt(disc);  // seed 000 eq. 5 (branch -1), other root (+1)
+}
+
+std::vector<MomaAssembly> Moma::direct_all(double p1, double p2) const {
+  // Circle-circle intersection of |P - S1| = l1 and |P - S2| = l2.
+  const Point s1 = slider(0, p1), s2 = slider(1, p2);
+  const double l1 = legs_[0].rod_length, l2 = legs_[1].rod_length;
+  const Point d = s2 - s1;
+  const double dist = norm(d);
+  std::vector<MomaAssembly> out;
+  if (dist == 0.0) return out;  // concentric: no isolated solution
+  const Point e = (1.0 / dist) * d;
+  const Point n{-e.y, e.x};
+  const double along = (l1 * l1 - l2 * l2 + dist * dist) / (2.0 * dist);
+  const double h2 = (l1 - along) * (l1 + along);
+  const double scale = std::max(l1, l2);
+  if (h2 < -singular_tol * scale * scale) return out;
+  if (h2 <= singular_tol * scale * scale) {
+    out.push_back({s1 + along * e, 0});  // tangent circles: one (type-2 singular) pose
+    return out;
+  }
+  const double h = std::sqrt(h2);
+  out.push_back({s1 + along * e + h * n, 1});
+  out.push_back({s1 + along * e - h * n, -1});
+  return out;
+}
+
+std::optional<Point> Moma::direct_closed_form(double p1, double p2, int sign) const {
+  const Point a1 = guide_direction(0), a2 = guide_direction(1);
+  const Point r1 = legs_[0].reference, r2 = legs_[1].reference;
+  const double l1 = legs_[0].rod_length, l2 = legs_[1].rod_length;
+  // seed 000 eq. 11
+  const double v1 = 2.0 * (p1 * a1.x + r1.x);
+  const double v2 = 2.0 * (p1 * a1.y + r1.y);
+  const double v3 = p1 * p1 + 2.0 * p1 * (a1.x * r1.x + a1.y * r1.y) - l1 * l1 + r1.x * r1.x + r1.y * r1.y;
+  const double v4 = 2.0 * (p2 * a2.x + r2.x);
+  const double v5 = 2.0 * (p2 * a2.y + r2.y);
+  const double v6 = p2 * p2 + 2.0 * p2 * (a2.x * r2.x + a2.y * r2.y) - l2 * l2 + r2.x * r2.x + r2.y * r2.y;
+  // seed 000 eq. 12: undefined where v4 = v1 (sliders on one vertical line)
+  const double denom = v4 - v1;
+  if (std::abs(denom) <= 1e-12 * (std::abs(v4) + std::abs(v1) + 1.0)) return std::nullopt;
+  const double v7 = (v6 - v3) / denom;
+  const double v8 = (v2 - v5) / denom;
+  const double v9 = 1.0 + v8 * v8;
+  const double v10 = 2.0 * v7 * v8 - v1 * v8 - v2;
+  const double v11 = v7 * v7 - v1 * v7 + v3;
+  const double disc = v10 * v10 - 4.0 * v9 * v11;
+  if (disc < 0.0) return std::nullopt;
+  const double y = (-v10 + sign * std::sqrt(disc)) / (2.0 * v9);  // seed 000 eq. 10
+  return Point{v7 + y * v8, y};                                   // seed 000 eq. 9
+}
+
+MomaJacobians Moma::jacobians(Point p, double p1, double p2) const {
+  // d/dt of seed 000 eq. 3: (P - S_i) . dP = ((P - S_i) . a_i) dp_i
+  MomaJacobians j;
+  for (int i = 0; i < 2; ++i) {
+    const Point w = p - slider(i, i == 0 ? p1 : p2);
+    j.A(i, 0) = w.x;
+    j.A(i, 1) = w.y;
+  }
+  j.B.setZero();
+  j.B(0, 0) = dot(p - slider(0, p1), guide_direction(0));
+  j.B(1, 1) = dot(p - slider(1, p2), guide_direction(1));
+  return j;
+}
+
+std::vector<JointInfo> Moma::joints() const { return {{"p1", false}, {"p2", false}}; }
+
+namespace {
+
+struct ModeIk {
+  int b1, b2;
+  std::optional<double> p1, p2;
+};
+
+}  // namespace
+
+std::vector<JointSolution> Moma::inverse(const Pose& pose) const {
+  const Point p{pose.x, pose.y};
+  const int f1 = legs_[0].branch, f2 = legs_[1].branch;
+  // The file's working mode first, then the other three branch combinations.
+  const int combos[4][2] = {{f1, f2}, {f1, -f2}, {-f1, f2}, {-f1, -f2}};
+  std::vector<JointSolution> out;
+  for (const auto& c : combos) {
+    JointSolution s;
+    s.mode = mode_label(c[0], c[1]);
+    const auto q1 = inverse_leg(0, p, c[0]);
+    const auto q2 = inverse_leg(1, p, c[1]);
+    if (!q1 || !q2) {
+      s.reason = std::string("rod ") + (!q1 ? "1" : "2") + " cannot reach the point";
+      out.push_back(s);
+      continue;
+    }
+    s.joints = {*q1, *q2};
+    for (int i = 0; i < 2; ++i) {
+      const MomaLeg& l = legs_[i];
+      const double tol = singular_tol * (l.stroke_max - l.stroke_min);
+      if (s.joints[i] < l.stroke_min - tol || s.joints[i] > l.stroke_max + tol) {
+        s.reason = "p" + std::to_string(i + 1) + " = " + number(s.joints[i]) + " outside stroke [" +
+                   number(l.stroke_min) + ", " + number(l.stroke_max) + "]";
+        break;
+      }
+    }
+    if (s.reason.empty() && (c[0] != f1 || c[1] != f2)) {
+      s.reason = "within the strokes, but not the file's working mode " + mode_label(f1, f2);
+    }
+    s.valid = s.reason.empty();
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::vector<PoseSolution> Moma::direct(std::span<const double> q) const {
+  if (q.size() != 2) throw std::invalid_argument("moma: direct kinematics needs p1 and p2");
+  std::vector<PoseSolution> out;
+  for (const MomaAssembly& a : direct_all(q[0], q[1])) {
+    PoseSolution s;
+    s.mode = a.sign > 0 ? "+" : (a.sign < 0 ? "-" : "tangent");
+    s.pose = {a.platform.x, a.platform.y, 0.0};
+    for (int i = 0; i < 2 && s.reason.empty(); ++i) {
+      const MomaLeg& l = legs_[i];
+      if (q[i] < l.stroke_min || q[i] > l.stroke_max) {
+        s.reason = "p" + std::to_string(i + 1) + " outside stroke [" + number(l.stroke_min) + ", " +
+                   number(l.stroke_max) + "]";
+      }
+      // Branch -1 (eq. 5) keeps P ahead of the slider: a . (P - S) >= 0.
+      const double ahead = dot(a.platform - slider(i, q[i]), guide_direction(i));
+      if (s.reason.empty() && -l.branch * ahead < -singular_tol * l.rod_length) {
+        s.reason = "rod " + std::to_string(i + 1) + " is on the other branch than the file's (" +
+                   std::to_string(l.branch) + ")";
+      }
+    }
+    s.valid = s.reason.empty();
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::vector<Evaluation> Moma::evaluate(const Pose& pose, const Criteria& criteria) const {
+  const Point p{pose.x, pose.y};
+  std::vector<Evaluation> out;
+  for (const JointSolution& s : inverse(pose)) {
+    Evaluation e;
+    e.mode = s.mode;
+    e.reachable = s.valid;
+    e.reason = s.reason;
+    e.joints = s.joints;
+    if (s.joints.size() != 2) {
+      e.jacobian_det = std::numeric_limits<double>::quiet_NaN();
+      e.condition_number = std::numeric_limits<double>::quiet_NaN();
+      out.push_back(e);
+      continue;
+    }
+    const MomaJacobians j = jacobians(p, s.joints[0], s.joints[1]);
+    const double l1 = legs_[0].rod_length, l2 = legs_[1].rod_length;
+    const bool type1 = std::abs(j.B(0, 0)) <= singular_tol * l1 || std::abs(j.B(1, 1)) <= singular_tol * l2;
+    const double det_a = j.A.determinant();
+    const bool type2 = std::abs(det_a) <= singular_tol * l1 * l2;
+    e.singular = type1 || type2;
+    e.singularity = type1 && type2 ? "both" : type1 ? "type1" : type2 ? "type2" : "";
+    // dq = B^-1 A dP: the inverse-kinematic Jacobian.
+    if (type1) {
+      e.jacobian_det = inf;
+      e.condition_number = inf;
+      e.velocity_ratio = inf;
+    } else {
+      const Eigen::Matrix2d jq = j.B.inverse() * j.A;
+      e.jacobian_det = jq.determinant();
+      const Eigen::JacobiSVD<Eigen::Matrix2d> svd(jq);
+      const auto sv = svd.singularValues();
+      e.condition_number = type2 || sv(1) == 0.0 ? inf : sv(0) / sv(1);
+      e.velocity_ratio = sv(0);  // worst-case |dq| / |dP|
+    }
+    // Pressure angle: leg i pushes along rod i; with actuator j locked, P moves
+    // perpendicular to rod j, so cos(alpha_i) = |sin(eps)|, eps between the rods.
+    const double sin_eps = std::abs(det_a) / (l1 * l2);
+    const double alpha = std::acos(std::min(1.0, sin_eps)) * rad2deg;
+    e.pressure_angle_deg = {alpha, alpha};
+    if (criteria.load) {
+      // Rod force for a force of norm f in the worst direction: f / |sin eps|.
+      // A point platform transmits no moment, so m does not enter.
+      const double r = sin_eps > 0.0 ? criteria.load->force_N / sin_eps : inf;
+      e.reactions_N = {r, r};
+    }
+    e.extra.push_back({"transmission_angle_deg", std::asin(std::min(1.0, sin_eps)) * rad2deg});
+    out.push_back(e);
+  }
+  return out;
+}
+
+geometry::Region Moma::workspace() const {
+  geometry::Region ws;
+  for (int i = 0; i < 2; ++i) {
+    const MomaLeg& l = legs_[i];
+    // Branch -1 (eq. 5) puts P ahead of the slider: band side +1.
+    const geometry::Region band = geometry::band(slider(i, l.stroke_min), l.guide_angle,
+                                                 l.stroke_max - l.stroke_min, l.rod_length, -l.branch);
+    ws = i == 0 ? band : ws.intersect(band);
+  }
+  return ws;
+}
+
+bool Moma::reachable(const Pose& pose) const {
+  const Point p{pose.x, pose.y};
+  for (int i = 0; i < 2; ++i) {
+    const MomaLeg& l = legs_[i];
+    const auto q = inverse_leg(i, p, l.branch);
+    if (!q || *q < l.stroke_min || *q > l.stroke_max) return false;
+  }
+  return true;
+}
+
+Drawing Moma::draw(const Pose& pose) const {
+  Drawing d;
+  const Point p{pose.x, pose.y};
+  d.tool = p;
+  for (int i = 0; i < 2; ++i) {
+    const MomaLeg& l = legs_[i];
+    d.guides.push_back({slider(i, l.stroke_min), slider(i, l.stroke_max)});
+    d.base_points.push_back(l.reference);
+    const auto q = inverse_leg(i, p, l.branch);
+    const double at = q ? std::clamp(*q, l.stroke_min, l.stroke_max) : 0.5 * (l.stroke_min + l.stroke_max);
+    const Point s = slider(i, at);
+    d.sliders.push_back(s);
+    d.joints.push_back(s);
+    if (q) d.links.push_back({s, p});
+  }
+  d.joints.push_back(p);
+  return d;
+}
+
+geometry::Box Moma::bounds() const {
+  // Each leg's band lies in its stadium (guide segment grown by the rod length);
+  // the workspace lies in the intersection of the two stadium boxes.
+  geometry::Box boxes[2];
+  for (int i = 0; i < 2; ++i) {
+    const MomaLeg& l = legs_[i];
+    for (const Point s : {slider(i, l.stroke_min), slider(i, l.stroke_max)}) {
+      boxes[i].expand(Point{s.x - l.rod_length, s.y - l.rod_length});
+      boxes[i].expand(Point{s.x + l.rod_length, s.y + l.rod_length});
+    }
+  }
+  geometry::Box b;
+  b.min = {std::max(boxes[0].min.x, boxes[1].min.x), std::max(boxes[0].min.y, boxes[1].min.y)};
+  b.max = {std::min(boxes[0].max.x, boxes[1].max.x), std::min(boxes[0].max.y, boxes[1].max.y)};
+  if (b.empty()) {
+    b = boxes[0];
+    b.expand(boxes[1]);
+  }
+  return b;
+}
+
+}  // namespace pkmws::mechanisms

@@ -1,0 +1,184 @@
+// The command line as scripts use it (SPEC §4): JSON keys, exit codes, and
+// every kind of bad input giving one line on stderr, exit 2 and no output file.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("pkmws-cli-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  Result run(const std::string& args) {
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    const std::string cmd = std::string(PKMWS_CLI) + " " + args + " >" + out.string() + " 2>" + err.string();
+    const int raw = std::system(cmd.c_str());
+    Result r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+  fs::path write(const std::string& name, const std::string& content) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p) << content;
+    return p;
+  }
+
+  static std::string dataset(const std::string& name) {
+    return std::string(PKMWS_SOURCE_DIR) + "/datasets/" + name;
+  }
+
+  // One line on stderr, exit 2, nothing on stdout.
+  void expect_bad_input(const Result& r, const std::string& needle) {
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << "stderr: " << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+
+  fs::path dir_;
+};
+
+const char* kGoodMoma = R"({
+  "name": "test MOMA", "mechanism": "moma", "units": "mm",
+  "legs": [
+    {"reference": [-100, 0], "guide_angle_deg": 270, "stroke": [0, 200], "rod_length": 250, "branch": -1},
+    {"reference": [100, 0], "guide_angle_deg": 270, "stroke": [0, 200], "rod_length": 250, "branch": -1}
+  ]
+})";
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto pos = s.find(from);
+  if (pos != std::string::npos) s.replace(pos, from.size(), to);
+  return s;
+}
+
+}  // namespace
+
+TEST_F(Cli, AreaJsonHasTheContractKeys) {
+  const Result r = run("area " + dataset("moma_m1_g0_l250.json") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"area", "area_lower", "area_upper", "method", "components", "time_ms"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["method"], "exact");
+  EXPECT_LE(j["area_lower"].get<double>(), j["area"].get<double>());
+  EXPECT_GE(j["area_upper"].get<double>(), j["area"].get<double>());
+  EXPECT_GT(j["area"].get<double>(), 0.0);
+}
+
+TEST_F(Cli, IkDkEvalInfoAnswerInJson) {
+  const std::string f = write("m.json", kGoodMoma).string();
+  const Result ik = run("ik " + f + " 0 -300");
+  ASSERT_EQ(ik.status, 0) << ik.err;
+  const auto j = nlohmann::json::parse(ik.out);
+  ASSERT_FALSE(j["solutions"].empty());
+  bool any_valid = false;
+  for (const auto& s : j["solutions"]) any_valid = any_valid || s["valid"].get<bool>();
+  EXPECT_TRUE(any_valid);
+  const Result dk = run("dk " + f + " 100 100");
+  ASSERT_EQ(dk.status, 0) << dk.err;
+  EXPECT_FALSE(nlohmann::json::parse(dk.out)["solutions"].empty());
+  const Result ev = run("eval " + f + " 0 -300");
+  ASSERT_EQ(ev.status, 0) << ev.err;
+  const auto e = nlohmann::json::parse(ev.out);
+  ASSERT_FALSE(e["modes"].empty());
+  for (const char* key : {"mode", "reachable", "joints", "jacobian_det", "condition_number", "singular",
+                          "pressure_angle_deg", "reactions_N"}) {
+    EXPECT_TRUE(e["modes"][0].contains(key)) << key;
+  }
+  const Result info = run("info " + f);
+  ASSERT_EQ(info.status, 0) << info.err;
+  EXPECT_EQ(nlohmann::json::parse(info.out)["derived"]["dof"], 2);
+}
+
+TEST_F(Cli, ExportWritesEveryFormat) {
+  for (const char* format : {"svg", "dxf", "wkt", "geojson", "csv"}) {
+    const fs::path out = dir_ / (std::string("ws.") + format);
+    const Result r = run("export " + dataset("moma_m1_g0_l250.json") + " --format " + format + " -o " + out.string());
+    EXPECT_EQ(r.status, 0) << format << ": " << r.err;
+    EXPECT_TRUE(fs::exists(out)) << format;
+    EXPECT_GT(fs::file_size(out), 100u) << format;
+  }
+}
+
+TEST_F(Cli, BadInputGivesOneLineAndExitTwo) {
+  expect_bad_input(run("area " + (dir_ / "missing.json").string()), "no such file");
+  expect_bad_input(run("area " + write("bad.json", "{ \"name\": ").string()), "malformed JSON");
+  expect_bad_input(run("area " + write("unknown.json", replace(kGoodMoma, "\"units\"", "\"colour\": 1, \"units\"")).string()),
+                   "colour: unknown field");
+  expect_bad_input(run("area " + write("neg.json", replace(kGoodMoma, "\"rod_length\": 250", "\"rod_length\": -250")).string()),
+                   "legs[0].rod_length");
+  expect_bad_input(run("area " + write("stroke.json", replace(kGoodMoma, "[0, 200]", "[200, 0]")).string()),
+                   "legs[0].stroke");
+  // Impossible geometry: guides so far apart that the rods never meet.
+  expect_bad_input(run("area " + write("apart.json", replace(kGoodMoma, "[100, 0]", "[5000, 0]")).string()),
+                   "empty");
+  expect_bad_input(run("area " + write("type.json", replace(kGoodMoma, "\"mm\"", "\"inch\"")).string()), "units");
+  expect_bad_input(run("ik " + write("m.json", kGoodMoma).string() + " zero 1"), "X");
+  expect_bad_input(run("frobnicate"), "frobnicate");
+}
+
+TEST_F(Cli, FailedExportLeavesNoFile) {
+  const fs::path out = dir_ / "never.svg";
+  expect_bad_input(run("export " + (dir_ / "missing.json").string() + " --format svg -o " + out.string()),
+                   "no such file");
+  EXPECT_FALSE(fs::exists(out));
+  expect_bad_input(run("export " + dataset("moma_m1_g0_l250.json") + " --format png -o " + out.string()),
+                   "png");
+  EXPECT_FALSE(fs::exists(out));
+  const fs::path nodir = dir_ / "no" / "such" / "dir" / "x.svg";
+  expect_bad_input(run("export " + dataset("moma_m1_g0_l250.json") + " --format svg -o " + nodir.string()),
+                   "cannot write");
+  EXPECT_FALSE(fs::exists(nodir));
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+  }
+}
+
+TEST_F(Cli, BatchWritesFiguresAndSummary) {
+  const fs::path out = dir_ / "out";
+  const Result r = run("batch " + dataset("moma_m1_g0_l250.json") + " " + dataset("moma_m2_l250.json") +
+                    " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "moma_m1_g0_l250.svg"));
+  EXPECT_TRUE(fs::exists(out / "summary.md"));
+  const auto rows = nlohmann::json::parse(slurp(out / "summary.json"));
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_GT(rows[0]["area"].get<double>(), 0.0);
+}
