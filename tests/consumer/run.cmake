@@ -1,0 +1,26 @@
+# ctest: install the built project into a scratch prefix, configure and build a
+# consumer project against it with find_package(pkmws), run it.
+set(work ${BUILD_DIR}/consumer-test)
+file(REMOVE_RECURSE ${work})
+execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${work}/prefix
+                RESULT_VARIABLE rc OUTPUT_QUIET)
+if(rc)
+  message(FATAL_ERROR "install failed")
+endif()
+configure_file(${SOURCE_DIR}/tests/consumer/CMakeLists.txt.in ${work}/src/CMakeLists.txt COPYONLY)
+configure_file(${SOURCE_DIR}/tests/consumer/main.cpp.in ${work}/src/main.cpp COPYONLY)
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${work}/src -B ${work}/build -DCMAKE_PREFIX_PATH=${work}/prefix
+                RESULT_VARIABLE rc OUTPUT_QUIET)
+if(rc)
+  message(FATAL_ERROR "configuring the consumer failed")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${work}/build RESULT_VARIABLE rc OUTPUT_QUIET)
+if(rc)
+  message(FATAL_ERROR "building the consumer failed")
+endif()
+execute_process(COMMAND ${work}/build/consumer OUTPUT_VARIABLE out RESULT_VARIABLE rc)
+string(STRIP "${out}" out)
+if(rc OR NOT out STREQUAL "3.14159265358979")
+  message(FATAL_ERROR "consumer printed '${out}' (exit ${rc})")
+endif()
+message(STATUS "consumer OK: ${out}")
