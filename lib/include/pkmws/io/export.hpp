@@ -24,11 +24,18 @@ struct ExportOptions {
   /// Components smaller than this area are dropped (near-tangency slivers);
   /// <= 0 picks 1e-12 of the bounding-box area.
   double min_area = 0.0;
+  /// Length unit written into the files' metadata ("mm", "m"; empty: unitless).
+  std::string units;
 };
 
 /// Resolved tolerance / sliver threshold for a region (see ExportOptions).
 double effective_tolerance(const geometry::Region& region, const ExportOptions& options);
 double effective_min_area(const geometry::Region& region, const ExportOptions& options);
+/// Upper bound of |area(WKT/GeoJSON polygons) - area(exported components)| at
+/// the effective tolerance: every chord cuts off a circular segment of area
+/// <= (pi/4) * tolerance * chord, so the bound is (pi/4) * tolerance * (total
+/// arc length), plus rounding (unit: the file's length unit squared).
+double polyline_area_error_bound(const geometry::Region& region, const ExportOptions& options);
 
 /// SVG path data of the boundary in mathematical coordinates (y up): M, L,
 /// and A commands (true arcs), one closed subpath per loop; fill with evenodd.
