@@ -1,9 +1,16 @@
-// The paper-style workspace figure: filled exact workspace (true arcs), frame
-// with ticks in the file's unit, scale bar, the mechanism at a pose, title and
-// caption. Geometry is drawn in a y-up group; strokes do not scale.
+// The paper-style workspace figure (SPEC §2.5 "plots in the style of the
+// papers' figures"): white page, light-red exact workspace with a dark outline
+// (true arcs), frame with 1-2-5 ticks in the file's unit, light grid, axes
+// through the origin when visible, scale bar, the mechanism at a pose (guides
+// dashed, rods, sliders, joints, tool point), legend, title and caption.
+//
+// Canvas: 800 px wide, at most ~700 px high; the plot keeps the aspect ratio
+// 1:1 (one scale s in px per length unit). Output is deterministic.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
+#include <string>
+#include <vector>
 
 #include "pkmws/io/export.hpp"
 
@@ -11,20 +18,44 @@ namespace pkmws::io {
 
 namespace {
 
-std::string fmt(double v) {
+using geometry::Box;
+using geometry::Point;
+
+// Pixel coordinates and sizes: two decimals are plenty.
+std::string px(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
+  std::snprintf(buf, sizeof buf, "%.2f", v);
+  std::string s = buf;
+  // Trim trailing zeros ("12.50" -> "12.5", "3.00" -> "3").
+  while (!s.empty() && s.back() == '0') s.pop_back();
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  if (s == "-0") s = "0";
+  return s;
+}
+
+// Full precision for the geometry transform (the path itself is exact).
+std::string g17(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
 }
 
-// 1-2-5 step giving about `target` intervals over `range`.
+// 1-2-5 step giving at most about `target` intervals over `range`.
 double nice_step(double range, int target) {
   const double raw = range / target;
   const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0, 10.0}) {
-    if (m * mag >= raw) return m * mag;
+  for (double m : {1.0, 2.0, 5.0}) {
+    if (m * mag >= raw * (1.0 - 1e-12)) return m * mag;
   }
   return 10.0 * mag;
+}
+
+// Tick label k * step with the step's decimals and a typographic minus.
+std::string tick_label(long k, double step) {
+  const int decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)));
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, std::abs(static_cast<double>(k) * step));
+  return (k < 0 ? "\u2212" : "") + std::string(buf);
 }
 
 std::string escape(const std::string& text) {
@@ -41,132 +72,247 @@ std::string escape(const std::string& text) {
   return out;
 }
 
+// Greedy word wrap at `width` characters (UTF-8 multibyte counted per byte;
+// close enough for a caption).
+std::vector<std::string> wrap(const std::string& text, std::size_t width) {
+  std::vector<std::string> lines;
+  std::string line, word;
+  auto flush_word = [&] {
+    if (word.empty()) return;
+    if (!line.empty() && line.size() + 1 + word.size() > width) {
+      lines.push_back(line);
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+    word.clear();
+  };
+  for (char c : text) {
+    if (c == ' ' || c == '\n') flush_word();
+    else word += c;
+  }
+  flush_word();
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+std::string line_el(Point a, Point b, const std::string& style) {
+  return "<line x1=\"" + px(a.x) + "\" y1=\"" + px(a.y) + "\" x2=\"" + px(b.x) + "\" y2=\"" +
+         px(b.y) + "\" " + style + "/>\n";
+}
+
+std::string text_el(Point at, const std::string& text, const std::string& style) {
+  return "<text x=\"" + px(at.x) + "\" y=\"" + px(at.y) + "\" " + style + ">" + escape(text) +
+         "</text>\n";
+}
+
+// Drawing styles, shared by the plot and the legend.
+const std::string kFill = "#f4a3a3";
+const std::string kOutline = "#8b1a1a";
+const std::string kGuideBand = "stroke=\"#d6d6d6\" stroke-width=\"9\" stroke-linecap=\"butt\"";
+const std::string kGuideLine = "stroke=\"#555555\" stroke-width=\"1.3\" stroke-dasharray=\"7 4\"";
+const std::string kLink = "stroke=\"#1f3a93\" stroke-width=\"4.5\" stroke-linecap=\"round\"";
+const std::string kJoint = "fill=\"white\" stroke=\"black\" stroke-width=\"1.6\"";
+const std::string kSlider = "fill=\"#c8d4f0\" stroke=\"#1f3a93\" stroke-width=\"1.6\"";
+const std::string kTool = "fill=\"#d40000\" stroke=\"white\" stroke-width=\"1.5\"";
+
 }  // namespace
 
 std::string workspace_figure(const MechanismFile& file, const geometry::Region& region,
                              const mechanisms::Pose& pose, const FigureOptions& options) {
-  using geometry::Point;
-  const mechanisms::Drawing drawing = options.draw_mechanism && file.model
-                                          ? file.model->draw(pose)
-                                          : mechanisms::Drawing{};
-  geometry::Box view = region.bbox();
-  auto add = [&view](Point p) { if (std::isfinite(p.x) && std::isfinite(p.y)) view.expand(p); };
+  const bool mech = options.draw_mechanism && file.model != nullptr;
+  const mechanisms::Drawing drawing = mech ? file.model->draw(pose) : mechanisms::Drawing{};
+
+  // The view: region and mechanism, padded, then widened to whole ticks.
+  Box view = region.bbox();
+  auto add = [&view](Point p) {
+    if (std::isfinite(p.x) && std::isfinite(p.y)) view.expand(p);
+  };
   for (const auto& s : drawing.guides) { add(s.a); add(s.b); }
   for (const auto& s : drawing.links) { add(s.a); add(s.b); }
   for (const Point& p : drawing.joints) add(p);
+  for (const Point& p : drawing.sliders) add(p);
   for (const Point& p : drawing.base_points) add(p);
-  if (view.empty()) view.expand(Point{0, 0});
-  const double span = std::max({view.width(), view.height(), 1e-9});
+  if (mech) add(drawing.tool);
+  if (view.empty()) view.expand(Point{0.0, 0.0});
+  double span = std::max(view.width(), view.height());
+  if (!(span > 0.0)) span = 1.0;
   const double pad = 0.06 * span;
-  view.min = {view.min.x - pad, view.min.y - pad};
-  view.max = {view.max.x + pad, view.max.y + pad};
+  const Box frame{{view.min.x - pad, view.min.y - pad}, {view.max.x + pad, view.max.y + pad}};
 
-  const double width = 800, left = 80, right = 30, top = 60, bottom = 90;
-  const double plot_w = width - left - right;
-  const double scale = plot_w / view.width();
-  const double plot_h = std::min(view.height() * scale, 900.0);
-  const double s = std::min(scale, plot_h / view.height());
-  const double height = top + plot_h + bottom;
-  auto px = [&](Point p) { return Point{left + (p.x - view.min.x) * s, top + (view.max.y - p.y) * s}; };
+  // Layout in px: 800 wide; plot at most 660 x 520, centred; room for the
+  // title above and tick labels, axis label, legend and caption below.
+  const double width = 800.0;
+  const double top = 58.0, left_room = 78.0, right_room = 36.0;
+  const double s = std::min(660.0 / frame.width(), 520.0 / frame.height());  // px per unit
+  const double plot_w = frame.width() * s, plot_h = frame.height() * s;
+  const double left = left_room + 0.5 * (width - left_room - right_room - plot_w);
+  // Ticks every 1-2-5 step of at least ~60 px; k indexes multiples of step.
+  const double step = nice_step(60.0 / s, 1);
+  const long kx0 = static_cast<long>(std::ceil(frame.min.x / step));
+  const long kx1 = static_cast<long>(std::floor(frame.max.x / step));
+  const long ky0 = static_cast<long>(std::ceil(frame.min.y / step));
+  const long ky1 = static_cast<long>(std::floor(frame.max.y / step));
+  const std::vector<std::string> caption = wrap(options.caption, 92);
+  const bool legend = mech;
+  const double below = 52.0 + (legend ? 30.0 : 0.0) + 20.0 * static_cast<double>(caption.size()) + 14.0;
+  const double height = std::ceil(top + plot_h + below);
+  auto to_px = [&](Point p) {
+    return Point{left + (p.x - frame.min.x) * s, top + (frame.max.y - p.y) * s};
+  };
 
-  std::ostringstream o;
-  o << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-    << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << fmt(width) << "\" height=\"" << fmt(height)
-    << "\" viewBox=\"0 0 " << fmt(width) << " " << fmt(height) << "\" font-family=\"DejaVu Sans, Arial, sans-serif\">\n"
-    << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-    << "<text x=\"" << fmt(width / 2) << "\" y=\"32\" font-size=\"20\" text-anchor=\"middle\">"
-    << escape(options.title) << "</text>\n";
+  std::string o;
+  o += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  o += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + px(width) + "\" height=\"" + px(height) +
+       "\" viewBox=\"0 0 " + px(width) + " " + px(height) +
+       "\" font-family=\"DejaVu Sans, Arial, Helvetica, sans-serif\">\n";
+  o += "<rect x=\"0\" y=\"0\" width=\"" + px(width) + "\" height=\"" + px(height) + "\" fill=\"white\"/>\n";
+  o += text_el({width / 2, 34}, options.title,
+               "font-size=\"20\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"#111\"");
 
-  // Grid lines and ticks.
-  const double step = nice_step(std::max(view.width(), view.height()), 8);
-  o << "<g stroke=\"#e6e6e6\" stroke-width=\"1\">\n";
-  std::ostringstream labels;
-  for (double x = std::ceil(view.min.x / step) * step; x <= view.max.x; x += step) {
-    const double X = px({x, 0}).x;
-    o << "<line x1=\"" << fmt(X) << "\" y1=\"" << fmt(top) << "\" x2=\"" << fmt(X) << "\" y2=\""
-      << fmt(top + plot_h) << "\"/>\n";
-    labels << "<text x=\"" << fmt(X) << "\" y=\"" << fmt(top + plot_h + 18)
-           << "\" font-size=\"12\" text-anchor=\"middle\">" << fmt(std::abs(x) < 1e-9 * step ? 0 : x) << "</text>\n";
+  // Grid, axes through the origin, ticks and tick labels.
+  const double x_lo = left, x_hi = left + plot_w, y_lo = top, y_hi = top + plot_h;
+  o += "<g stroke=\"#ebebeb\" stroke-width=\"1\">\n";
+  for (long k = kx0; k <= kx1; ++k) {
+    const double X = to_px({static_cast<double>(k) * step, 0}).x;
+    o += line_el({X, y_lo}, {X, y_hi}, "");
   }
-  for (double y = std::ceil(view.min.y / step) * step; y <= view.max.y; y += step) {
-    const double Y = px({0, y}).y;
-    o << "<line x1=\"" << fmt(left) << "\" y1=\"" << fmt(Y) << "\" x2=\"" << fmt(left + plot_w) << "\" y2=\""
-      << fmt(Y) << "\"/>\n";
-    labels << "<text x=\"" << fmt(left - 8) << "\" y=\"" << fmt(Y + 4)
-           << "\" font-size=\"12\" text-anchor=\"end\">" << fmt(std::abs(y) < 1e-9 * step ? 0 : y) << "</text>\n";
+  for (long k = ky0; k <= ky1; ++k) {
+    const double Y = to_px({0, static_cast<double>(k) * step}).y;
+    o += line_el({x_lo, Y}, {x_hi, Y}, "");
   }
-  o << "</g>\n" << labels.str();
-  // Axes through the origin when visible.
-  if (view.min.x < 0 && view.max.x > 0) {
-    const double X = px({0, 0}).x;
-    o << "<line x1=\"" << fmt(X) << "\" y1=\"" << fmt(top) << "\" x2=\"" << fmt(X) << "\" y2=\"" << fmt(top + plot_h)
-      << "\" stroke=\"#888\" stroke-width=\"1\"/>\n";
+  o += "</g>\n";
+  if (frame.min.x < 0.0 && frame.max.x > 0.0) {
+    const double X = to_px({0, 0}).x;
+    o += line_el({X, y_lo}, {X, y_hi}, "stroke=\"#9a9a9a\" stroke-width=\"1\"");
   }
-  if (view.min.y < 0 && view.max.y > 0) {
-    const double Y = px({0, 0}).y;
-    o << "<line x1=\"" << fmt(left) << "\" y1=\"" << fmt(Y) << "\" x2=\"" << fmt(left + plot_w) << "\" y2=\""
-      << fmt(Y) << "\" stroke=\"#888\" stroke-width=\"1\"/>\n";
+  if (frame.min.y < 0.0 && frame.max.y > 0.0) {
+    const double Y = to_px({0, 0}).y;
+    o += line_el({x_lo, Y}, {x_hi, Y}, "stroke=\"#9a9a9a\" stroke-width=\"1\"");
   }
 
-  // The workspace: true arcs, in a y-up group.
-  o << "<g transform=\"translate(" << fmt(left - view.min.x * s) << " " << fmt(top + view.max.y * s)
-    << ") scale(" << fmt(s) << " " << fmt(-s) << ")\">\n"
-    << "<path fill=\"#f08080\" fill-opacity=\"0.75\" fill-rule=\"evenodd\" stroke=\"#8b0000\" "
-       "stroke-width=\"1.5\" vector-effect=\"non-scaling-stroke\" d=\""
-    << svg_path(region) << "\"/>\n</g>\n";
+  // The workspace: exact boundary with true arcs in a y-up group.
+  const double outline = 1.8 / s;  // 1.8 px in file units
+  o += "<g transform=\"translate(" + g17(left - frame.min.x * s) + " " + g17(top + frame.max.y * s) +
+       ") scale(" + g17(s) + " " + g17(-s) + ")\">\n";
+  o += "<path fill=\"" + kFill + "\" fill-rule=\"evenodd\" stroke=\"" + kOutline + "\" stroke-width=\"" +
+       g17(outline) + "\" stroke-linejoin=\"round\" d=\"" + svg_path(region) + "\"/>\n</g>\n";
 
   // The mechanism at the pose.
-  for (const auto& g : drawing.guides) {
-    const Point a = px(g.a), b = px(g.b);
-    o << "<line x1=\"" << fmt(a.x) << "\" y1=\"" << fmt(a.y) << "\" x2=\"" << fmt(b.x) << "\" y2=\"" << fmt(b.y)
-      << "\" stroke=\"#555\" stroke-width=\"6\" stroke-opacity=\"0.35\" stroke-linecap=\"round\"/>\n"
-      << "<line x1=\"" << fmt(a.x) << "\" y1=\"" << fmt(a.y) << "\" x2=\"" << fmt(b.x) << "\" y2=\"" << fmt(b.y)
-      << "\" stroke=\"#333\" stroke-width=\"1.2\" stroke-dasharray=\"8 5\"/>\n";
-  }
-  for (const auto& l : drawing.links) {
-    const Point a = px(l.a), b = px(l.b);
-    o << "<line x1=\"" << fmt(a.x) << "\" y1=\"" << fmt(a.y) << "\" x2=\"" << fmt(b.x) << "\" y2=\"" << fmt(b.y)
-      << "\" stroke=\"#1f3f8f\" stroke-width=\"4\" stroke-linecap=\"round\"/>\n";
-  }
-  for (const Point& p : drawing.sliders) {
-    const Point c = px(p);
-    o << "<rect x=\"" << fmt(c.x - 9) << "\" y=\"" << fmt(c.y - 6) << "\" width=\"18\" height=\"12\" "
-      << "fill=\"#c9d3ea\" stroke=\"#1f3f8f\" stroke-width=\"1.5\"/>\n";
-  }
-  for (const Point& p : drawing.base_points) {
-    const Point c = px(p);
-    o << "<path d=\"M" << fmt(c.x) << " " << fmt(c.y) << " l-7 12 h14 z\" fill=\"#777\" stroke=\"#333\"/>\n";
-  }
-  for (const Point& p : drawing.joints) {
-    const Point c = px(p);
-    o << "<circle cx=\"" << fmt(c.x) << "\" cy=\"" << fmt(c.y) << "\" r=\"4.5\" fill=\"white\" stroke=\"black\" "
-      << "stroke-width=\"1.5\"/>\n";
-  }
-  if (options.draw_mechanism && file.model) {
-    const Point t = px(drawing.tool);
-    o << "<circle cx=\"" << fmt(t.x) << "\" cy=\"" << fmt(t.y) << "\" r=\"3\" fill=\"#d00000\"/>\n"
-      << "<text x=\"" << fmt(t.x + 8) << "\" y=\"" << fmt(t.y - 8) << "\" font-size=\"13\" fill=\"#d00000\">P</text>\n";
+  if (mech) {
+    for (const auto& g : drawing.guides) o += line_el(to_px(g.a), to_px(g.b), kGuideBand);
+    for (const auto& g : drawing.guides) o += line_el(to_px(g.a), to_px(g.b), kGuideLine);
+    for (const Point& b : drawing.base_points) {
+      // Ground symbol: a small triangle with a hatched base line.
+      const Point c = to_px(b);
+      o += "<path d=\"M" + px(c.x) + " " + px(c.y) + " l-8 13 h16 z\" fill=\"#bdbdbd\" stroke=\"#333\" "
+           "stroke-width=\"1.2\"/>\n";
+      o += line_el({c.x - 11, c.y + 13}, {c.x + 11, c.y + 13}, "stroke=\"#333\" stroke-width=\"1.4\"");
+      for (int h = 0; h < 5; ++h) {
+        const double hx = c.x - 10 + 5.0 * h;
+        o += line_el({hx, c.y + 13}, {hx - 4, c.y + 18}, "stroke=\"#333\" stroke-width=\"1\"");
+      }
+    }
+    for (const auto& l : drawing.links) o += line_el(to_px(l.a), to_px(l.b), kLink);
+    for (const Point& p : drawing.sliders) {
+      // Slider block along the guide it sits on (the nearest one).
+      double angle = 0.0, best = INFINITY;
+      for (const auto& g : drawing.guides) {
+        const Point d = g.b - g.a;
+        const double len2 = geometry::dot(d, d);
+        const double t = len2 > 0 ? std::clamp(geometry::dot(p - g.a, d) / len2, 0.0, 1.0) : 0.0;
+        const double dist = geometry::norm(p - (g.a + t * d));
+        if (dist < best) { best = dist; angle = std::atan2(-d.y, d.x) * 180.0 / 3.14159265358979323846; }
+      }
+      const Point c = to_px(p);
+      o += "<rect x=\"" + px(c.x - 12) + "\" y=\"" + px(c.y - 7) + "\" width=\"24\" height=\"14\" rx=\"2\" " +
+           "transform=\"rotate(" + px(angle) + " " + px(c.x) + " " + px(c.y) + ")\" " + kSlider + "/>\n";
+    }
+    for (const Point& p : drawing.joints) {
+      const Point c = to_px(p);
+      o += "<circle cx=\"" + px(c.x) + "\" cy=\"" + px(c.y) + "\" r=\"5\" " + kJoint + "/>\n";
+    }
+    const Point t = to_px(drawing.tool);
+    o += "<circle cx=\"" + px(t.x) + "\" cy=\"" + px(t.y) + "\" r=\"5.5\" " + kTool + "/>\n";
+    o += text_el({t.x + 9, t.y - 9}, "P",
+                 "font-size=\"16\" font-weight=\"bold\" fill=\"#d40000\" stroke=\"white\" "
+                 "stroke-width=\"3\" paint-order=\"stroke\"");
   }
 
-  // Frame, scale bar, axis labels, caption.
-  o << "<rect x=\"" << fmt(left) << "\" y=\"" << fmt(top) << "\" width=\"" << fmt(plot_w) << "\" height=\""
-    << fmt(plot_h) << "\" fill=\"none\" stroke=\"black\" stroke-width=\"1\"/>\n";
-  const double bar = step * s;
-  const double bx = left + plot_w - bar - 12, by = top + plot_h - 14;
-  o << "<g stroke=\"black\" stroke-width=\"2\"><line x1=\"" << fmt(bx) << "\" y1=\"" << fmt(by) << "\" x2=\""
-    << fmt(bx + bar) << "\" y2=\"" << fmt(by) << "\"/><line x1=\"" << fmt(bx) << "\" y1=\"" << fmt(by - 5)
-    << "\" x2=\"" << fmt(bx) << "\" y2=\"" << fmt(by + 5) << "\"/><line x1=\"" << fmt(bx + bar) << "\" y1=\""
-    << fmt(by - 5) << "\" x2=\"" << fmt(bx + bar) << "\" y2=\"" << fmt(by + 5) << "\"/></g>\n"
-    << "<text x=\"" << fmt(bx + bar / 2) << "\" y=\"" << fmt(by - 8) << "\" font-size=\"12\" text-anchor=\"middle\">"
-    << fmt(step) << " " << escape(file.units) << "</text>\n"
-    << "<text x=\"" << fmt(left + plot_w / 2) << "\" y=\"" << fmt(top + plot_h + 40)
-    << "\" font-size=\"14\" text-anchor=\"middle\">x [" << escape(file.units) << "]</text>\n"
-    << "<text x=\"20\" y=\"" << fmt(top + plot_h / 2) << "\" font-size=\"14\" text-anchor=\"middle\" "
-    << "transform=\"rotate(-90 20 " << fmt(top + plot_h / 2) << ")\">y [" << escape(file.units) << "]</text>\n"
-    << "<text x=\"" << fmt(width / 2) << "\" y=\"" << fmt(top + plot_h + 70)
-    << "\" font-size=\"15\" text-anchor=\"middle\">" << escape(options.caption) << "</text>\n"
-    << "</svg>\n";
-  return o.str();
+  // Frame with outward ticks and labels.
+  o += "<rect x=\"" + px(x_lo) + "\" y=\"" + px(y_lo) + "\" width=\"" + px(plot_w) + "\" height=\"" +
+       px(plot_h) + "\" fill=\"none\" stroke=\"black\" stroke-width=\"1.2\"/>\n";
+  const std::string tick = "stroke=\"black\" stroke-width=\"1.2\"";
+  const std::string label = "font-size=\"13\" fill=\"#111\"";
+  for (long k = kx0; k <= kx1; ++k) {
+    const double X = to_px({static_cast<double>(k) * step, 0}).x;
+    o += line_el({X, y_hi}, {X, y_hi + 5}, tick);
+    o += text_el({X, y_hi + 20}, tick_label(k, step), label + " text-anchor=\"middle\"");
+  }
+  for (long k = ky0; k <= ky1; ++k) {
+    const double Y = to_px({0, static_cast<double>(k) * step}).y;
+    o += line_el({x_lo - 5, Y}, {x_lo, Y}, tick);
+    o += text_el({x_lo - 8, Y + 4.5}, tick_label(k, step), label + " text-anchor=\"end\"");
+  }
+  const std::string unit = file.units.empty() ? std::string() : " [" + file.units + "]";
+  o += text_el({x_lo + plot_w / 2, y_hi + 42}, "x" + unit,
+               "font-size=\"15\" font-style=\"italic\" text-anchor=\"middle\"");
+  const double ylab_x = std::max(16.0, x_lo - 58.0);
+  o += "<text x=\"" + px(ylab_x) + "\" y=\"" + px(y_lo + plot_h / 2) + "\" font-size=\"15\" " +
+       "font-style=\"italic\" text-anchor=\"middle\" transform=\"rotate(-90 " + px(ylab_x) + " " +
+       px(y_lo + plot_h / 2) + ")\">" + escape("y" + unit) + "</text>\n";
+
+  // Scale bar (one tick step, two if that is short) below the frame, right-
+  // aligned in the x-label row, so that it never hides the workspace.
+  const double bar_units = step * (step * s < 50.0 ? 2.0 : 1.0);
+  const double bar = bar_units * s;
+  const double bx = std::max(x_hi, x_lo + plot_w / 2 + 45 + bar) - bar, by = y_hi + 45;
+  o += "<g stroke=\"black\" stroke-width=\"2\">\n" + line_el({bx, by}, {bx + bar, by}, "") +
+       line_el({bx, by - 4}, {bx, by + 4}, "") + line_el({bx + bar, by - 4}, {bx + bar, by + 4}, "") +
+       "</g>\n";
+  {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%g", bar_units);
+    o += text_el({bx + bar / 2, by - 6}, std::string(buf) + (file.units.empty() ? "" : " " + file.units),
+                 "font-size=\"12\" text-anchor=\"middle\"");
+  }
+
+  // Legend row.
+  double y = y_hi + 52;
+  if (legend) {
+    y += 18;
+    // Items: symbol 24 px, gap 8, label (~7.5 px per character at 13 px), gap 28.
+    const std::vector<std::string> names{"workspace", "guide", "rod / link", "joint", "tool point P"};
+    double total = 0.0;
+    for (const auto& n : names) total += 24 + 8 + 7.5 * static_cast<double>(n.size()) + 28;
+    double x = width / 2 - (total - 28) / 2;
+    const std::string lt = "font-size=\"13\" fill=\"#111\"";
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      switch (i) {
+        case 0:
+          o += "<rect x=\"" + px(x) + "\" y=\"" + px(y - 11) + "\" width=\"24\" height=\"14\" fill=\"" +
+               kFill + "\" stroke=\"" + kOutline + "\" stroke-width=\"1.5\"/>\n";
+          break;
+        case 1:
+          o += line_el({x, y - 4}, {x + 24, y - 4}, kGuideBand);
+          o += line_el({x, y - 4}, {x + 24, y - 4}, kGuideLine);
+          break;
+        case 2: o += line_el({x + 2, y - 4}, {x + 22, y - 4}, kLink); break;
+        case 3: o += "<circle cx=\"" + px(x + 12) + "\" cy=\"" + px(y - 4) + "\" r=\"5\" " + kJoint + "/>\n"; break;
+        default: o += "<circle cx=\"" + px(x + 12) + "\" cy=\"" + px(y - 4) + "\" r=\"5.5\" " + kTool + "/>\n";
+      }
+      o += text_el({x + 32, y}, names[i], lt);
+      x += 24 + 8 + 7.5 * static_cast<double>(names[i].size()) + 28;
+    }
+    y += 12;
+  }
+
+  // Caption.
+  for (const std::string& line : caption) {
+    y += 20;
+    o += text_el({width / 2, y}, line, "font-size=\"14\" text-anchor=\"middle\" fill=\"#111\"");
+  }
+  o += "</svg>\n";
+  return o;
 }
 
 }  // namespace pkmws::io
