@@ -33,6 +33,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       throw io::InputError(a->file + ": the workspace is empty (impossible geometry): nothing to export");
     }
     io::ExportOptions options;
+    options.units = mech.units;
     options.tolerance = a->tolerance;
     std::string content;
     switch (format) {
