@@ -3,7 +3,9 @@
 // pressure angle and the exact workspace (intersection of two leg bands).
 #include "pkmws/mechanisms/moma.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -20,8 +22,12 @@ namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double rad2deg = 180.0 / std::numbers::pi;
-// Relative tolerance of the singularity tests and of stroke limits.
+// Relative tolerance of the singularity tests (|B_ii| <= tol l_i, |det A| <= tol l1 l2)
+// and of the branch side in direct() (|a_i . (P - S_i)| <= tol l_i counts as either side).
 constexpr double singular_tol = 1e-9;
+// inverse() accepts p_i up to this fraction of the stroke outside it, so that a
+// DK pose at p = stroke_min round-trips; reachable() (the grid test) is strict.
+constexpr double stroke_tol = 1e-12;
 
 std::string number(double v) {
   char buf[32];
@@ -74,21 +80,28 @@ std::optional<double> Moma::inverse_leg(int leg, Point p, int branch) const {
 }
 
 std::vector<MomaAssembly> Moma::direct_all(double p1, double p2) const {
-  // Circle-circle intersection of |P - S1| = l1 and |P - S2| = l2.
+  // Circle-circle intersection of |P - S1| = l1 and |P - S2| = l2 (seed 000
+  // eq. 7-8 are these two circles). No division by v4 - v1: the construction
+  // works along the centre line S1S2 in its own frame (e, n).
   const Point s1 = slider(0, p1), s2 = slider(1, p2);
   const double l1 = legs_[0].rod_length, l2 = legs_[1].rod_length;
   const Point d = s2 - s1;
   const double dist = norm(d);
   std::vector<MomaAssembly> out;
-  if (dist == 0.0) return out;  // concentric: no isolated solution
+  // Coincident centres: no solution (l1 != l2) or a whole circle of them
+  // (l1 == l2, the rods can spin together): no isolated assembly mode either way.
+  if (!(dist > 0.0) || !std::isfinite(dist)) return out;
   const Point e = (1.0 / dist) * d;
-  const Point n{-e.y, e.x};
+  const Point n{-e.y, e.x};  // left of S1 -> S2: cross(S2 - S1, n) > 0
+  // Foot of the common chord on S1S2 and the squared half chord (mm, mm^2).
   const double along = (l1 * l1 - l2 * l2 + dist * dist) / (2.0 * dist);
   const double h2 = (l1 - along) * (l1 + along);
-  const double scale = std::max(l1, l2);
-  if (h2 < -singular_tol * scale * scale) return out;
-  if (h2 <= singular_tol * scale * scale) {
-    out.push_back({s1 + along * e, 0});  // tangent circles: one (type-2 singular) pose
+  // h2 carries a rounding error of a few ulp of l1^2 + l2^2 + dist^2; within
+  // that the circles are tangent (rods aligned: a type-2 singular pose).
+  const double tangency = 16.0 * std::numeric_limits<double>::epsilon() * (l1 * l1 + l2 * l2 + dist * dist);
+  if (h2 < -tangency) return out;
+  if (h2 <= tangency) {
+    out.push_back({s1 + along * e, 0});
     return out;
   }
   const double h = std::sqrt(h2);
@@ -166,7 +179,7 @@ std::vector<JointSolution> Moma::inverse(const Pose& pose) const {
     s.joints = {*q1, *q2};
     for (int i = 0; i < 2; ++i) {
       const MomaLeg& l = legs_[i];
-      const double tol = singular_tol * (l.stroke_max - l.stroke_min);
+      const double tol = stroke_tol * std::max(l.stroke_max - l.stroke_min, std::abs(l.stroke_max) + std::abs(l.stroke_min));
       if (s.joints[i] < l.stroke_min - tol || s.joints[i] > l.stroke_max + tol) {
         s.reason = "p" + std::to_string(i + 1) + " = " + number(s.joints[i]) + " outside stroke [" +
                    number(l.stroke_min) + ", " + number(l.stroke_max) + "]";
@@ -174,7 +187,7 @@ std::vector<JointSolution> Moma::inverse(const Pose& pose) const {
       }
     }
     if (s.reason.empty() && (c[0] != f1 || c[1] != f2)) {
-      s.reason = "within the strokes, but not the file's working mode " + mode_label(f1, f2);
+      s.reason = "within the strokes, but another working mode than the file's branches " + mode_label(f1, f2);
     }
     s.valid = s.reason.empty();
     out.push_back(s);
@@ -189,17 +202,22 @@ std::vector<PoseSolution> Moma::direct(std::span<const double> q) const {
     PoseSolution s;
     s.mode = a.sign > 0 ? "+" : (a.sign < 0 ? "-" : "tangent");
     s.pose = {a.platform.x, a.platform.y, 0.0};
+    // Strokes first (they do not depend on the assembly mode), then the branch side.
     for (int i = 0; i < 2 && s.reason.empty(); ++i) {
       const MomaLeg& l = legs_[i];
-      if (q[i] < l.stroke_min || q[i] > l.stroke_max) {
-        s.reason = "p" + std::to_string(i + 1) + " outside stroke [" + number(l.stroke_min) + ", " +
-                   number(l.stroke_max) + "]";
+      if (!(q[i] >= l.stroke_min && q[i] <= l.stroke_max)) {
+        s.reason = "p" + std::to_string(i + 1) + " = " + number(q[i]) + " outside stroke [" +
+                   number(l.stroke_min) + ", " + number(l.stroke_max) + "]";
       }
-      // Branch -1 (eq. 5) keeps P ahead of the slider: a . (P - S) >= 0.
+    }
+    for (int i = 0; i < 2 && s.reason.empty(); ++i) {
+      const MomaLeg& l = legs_[i];
+      // Branch -1 (eq. 5) keeps P ahead of the slider, a . (P - S) >= 0; +1 behind.
       const double ahead = dot(a.platform - slider(i, q[i]), guide_direction(i));
-      if (s.reason.empty() && -l.branch * ahead < -singular_tol * l.rod_length) {
+      if (-l.branch * ahead < -singular_tol * l.rod_length) {
         s.reason = "rod " + std::to_string(i + 1) + " is on the other branch than the file's (" +
-                   std::to_string(l.branch) + ")";
+                   std::to_string(l.branch) + "): the platform is " + (ahead > 0 ? "ahead of" : "behind") +
+                   " slider " + std::to_string(i + 1);
       }
     }
     s.valid = s.reason.empty();
@@ -302,23 +320,39 @@ Drawing Moma::draw(const Pose& pose) const {
 }
 
 geometry::Box Moma::bounds() const {
-  // Each leg's band lies in its stadium (guide segment grown by the rod length);
-  // the workspace lies in the intersection of the two stadium boxes.
+  // Box of each leg's band: the half disk of radius l on the side v = -branch a
+  // of the slider has, per coordinate k, the extent S_k + l if v_k >= 0 else
+  // S_k + l |n_k| upwards (n the normal to v; v_k^2 + n_k^2 = 1), and the mirror
+  // downwards. The band is the union over the slider positions, i.e. over the
+  // two ends. The workspace lies in the intersection of the two legs' boxes,
+  // padded by a few ulp-scale units for the rounding of the exact boundary.
   geometry::Box boxes[2];
+  double scale = 0.0;
   for (int i = 0; i < 2; ++i) {
     const MomaLeg& l = legs_[i];
+    const Point a = guide_direction(i);
+    const Point v = double(-l.branch) * a;
+    const double up_x = v.x >= 0.0 ? l.rod_length : l.rod_length * std::abs(v.y);
+    const double down_x = v.x <= 0.0 ? l.rod_length : l.rod_length * std::abs(v.y);
+    const double up_y = v.y >= 0.0 ? l.rod_length : l.rod_length * std::abs(v.x);
+    const double down_y = v.y <= 0.0 ? l.rod_length : l.rod_length * std::abs(v.x);
     for (const Point s : {slider(i, l.stroke_min), slider(i, l.stroke_max)}) {
-      boxes[i].expand(Point{s.x - l.rod_length, s.y - l.rod_length});
-      boxes[i].expand(Point{s.x + l.rod_length, s.y + l.rod_length});
+      boxes[i].expand(Point{s.x - down_x, s.y - down_y});
+      boxes[i].expand(Point{s.x + up_x, s.y + up_y});
+      scale = std::max({scale, std::abs(s.x) + l.rod_length, std::abs(s.y) + l.rod_length});
     }
   }
   geometry::Box b;
   b.min = {std::max(boxes[0].min.x, boxes[1].min.x), std::max(boxes[0].min.y, boxes[1].min.y)};
   b.max = {std::min(boxes[0].max.x, boxes[1].max.x), std::min(boxes[0].max.y, boxes[1].max.y)};
   if (b.empty()) {
+    // Disjoint bands: empty workspace; still return a box that shows both legs.
     b = boxes[0];
     b.expand(boxes[1]);
   }
+  const double pad = 1e-9 * scale;
+  b.min = {b.min.x - pad, b.min.y - pad};
+  b.max = {b.max.x + pad, b.max.y + pad};
   return b;
 }
 
