@@ -13,5 +13,8 @@ namespace pkmws::io::detail {
 using MechanismPtr = std::shared_ptr<const mechanisms::Mechanism>;
 
 MechanismPtr load_moma(JsonReader& document);
+MechanismPtr load_five_bar(JsonReader& document);
+MechanismPtr load_biglide(JsonReader& document);
+MechanismPtr load_pi_joint(JsonReader& document);
 
 }  // namespace pkmws::io::detail

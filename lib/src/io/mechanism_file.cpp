@@ -16,6 +16,9 @@ using Loader = std::function<detail::MechanismPtr(detail::JsonReader&)>;
 const std::map<std::string, Loader>& loaders() {
   static const std::map<std::string, Loader> table = {
       {"moma", detail::load_moma},
+      {"five_bar", detail::load_five_bar},
+      {"biglide", detail::load_biglide},
+      {"pi_joint", detail::load_pi_joint},
   };
   return table;
 }
