@@ -475,6 +475,30 @@ TEST(MomaKinematics, M2AtP2Equal50DefeatsTheClosedFormButNotTheRobustDk) {
   }
 }
 
+TEST(MomaKinematics, ThePapersFixedSignOfEq10PicksTheWrongModeInM2AboveP2Equal50) {
+  // seed 000 eq. 10 uses "+" for M2. Just above p2 = 50 the line S1S2 tilts the
+  // other way and the valid platform (right of slider 2, above slider 1) is the
+  // intersection with the smaller y: p1 = 10, p2 = 52 gives P ~ (299.9, 17.6).
+  const auto mech = io::load_mechanism(dataset("moma_m2_l250"));
+  const Moma& m = as_moma(mech);
+  const std::vector<double> q{10.0, 52.0};
+  const auto sols = m.direct(q);
+  const auto valid = std::find_if(sols.begin(), sols.end(), [](const auto& s) { return s.valid; });
+  ASSERT_NE(valid, sols.end());
+  EXPECT_NEAR(valid->pose.x, 299.9, 0.1);
+  EXPECT_NEAR(valid->pose.y, 17.6, 0.1);
+  const auto paper = m.direct_closed_form(q[0], q[1], +1);
+  const auto other = m.direct_closed_form(q[0], q[1], -1);
+  ASSERT_TRUE(paper && other);
+  EXPECT_GT(distance(*paper, {valid->pose.x, valid->pose.y}), 100.0);
+  EXPECT_LT(distance(*other, {valid->pose.x, valid->pose.y}), 1e-9 * 300);
+  // Below p2 = 50 the paper's sign is the valid mode.
+  const auto below = m.direct(std::vector<double>{10.0, 48.0});
+  const auto valid_below = std::find_if(below.begin(), below.end(), [](const auto& s) { return s.valid; });
+  ASSERT_NE(valid_below, below.end());
+  EXPECT_LT(distance(*m.direct_closed_form(10.0, 48.0, +1), {valid_below->pose.x, valid_below->pose.y}), 1e-9 * 300);
+}
+
 TEST(MomaKinematics, JacobiansMatchFiniteDifferences) {
   std::mt19937 rng(3);
   for (const char* stem : {"moma_m1_gm5_l195", "moma_m2_l250", "moma_m3_l195", "moma_m4_gm5_gp5_l180"}) {
