@@ -54,13 +54,15 @@ double JsonReader::non_negative(const std::string& key) {
 
 int JsonReader::integer(const std::string& key) {
   const auto& v = get(key);
-  if (!v.is_number_integer()) fail(key, "expected an integer");
+  if (!v.is_number_integer() || v.get<long long>() != static_cast<long long>(v.get<int>())) {
+    fail(key, "expected an integer");
+  }
   return v.get<int>();
 }
 
 int JsonReader::sign(const std::string& key) {
   const auto& v = get(key);
-  if (!v.is_number_integer() || (v.get<int>() != 1 && v.get<int>() != -1)) {
+  if (!v.is_number_integer() || (v != nlohmann::json(1) && v != nlohmann::json(-1))) {
     fail(key, "expected -1 or 1");
   }
   return v.get<int>();

@@ -86,7 +86,7 @@ MechanismFile load_mechanism(const std::filesystem::path& path) {
   nlohmann::json document;
   try {
     document = nlohmann::json::parse(buffer.str());
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse errors, numbers out of range
     // e.what() is "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
     std::string what = e.what();
     const auto pos = what.find("] ");
