@@ -78,7 +78,10 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
     }
     io::write_file_atomic(fs::path(a->out) / "summary.md", md);
     io::write_file_atomic(fs::path(a->out) / "summary.json", rows.dump(2) + "\n");
-    std::printf("wrote %zu figures and summary.md to %s\n", mechs.size(), a->out.c_str());
+    std::size_t figures = 0;
+    for (const auto& row : rows) figures += row.contains("figure") ? 1 : 0;
+    std::printf("wrote %zu figures and summary.md to %s (%zu files without a planar workspace are listed with the reason)\n",
+                figures, a->out.c_str(), rows.size() - figures);
     return 0;
   }});
 }

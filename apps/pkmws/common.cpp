@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <numbers>
 
 #include "cli.hpp"
 #include "pkmws/geometry/inscribed.hpp"
@@ -55,11 +56,27 @@ mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Regi
     if (comps[i].area > comps[k].area) k = i;
   }
   const auto& c = comps[k];
-  geometry::Point p = c.centroid;
-  if (!geometry::inside(c, p) || geometry::distance_to_boundary(c, p) < 0.05 * std::sqrt(c.area)) {
-    p = geometry::largest_inscribed_circle(c, 1e-3 * std::sqrt(c.area)).center;
+  // Candidates: the centroid, the centre of the largest inscribed circle, and
+  // points around it; the first reachable, non-singular pose wins (a drawing at
+  // a singular pose, e.g. DexTAR's centre, hides the mechanism's shape).
+  const auto circle = geometry::largest_inscribed_circle(c, 1e-3 * std::sqrt(c.area));
+  std::vector<geometry::Point> candidates{c.centroid, circle.center};
+  for (int i = 0; i < 8; ++i) {
+    const double a = i * std::numbers::pi / 4 + 0.3;
+    candidates.push_back({circle.center.x + 0.5 * circle.radius * std::cos(a),
+                          circle.center.y + 0.5 * circle.radius * std::sin(a)});
   }
-  return {p.x, p.y, 0.0};
+  for (const auto& p : candidates) {
+    if (!geometry::inside(c, p) || geometry::distance_to_boundary(c, p) < 0.05 * std::sqrt(c.area)) continue;
+    const mechanisms::Pose pose{p.x, p.y, 0.0};
+    try {
+      const auto ev = file.model->evaluate(pose, {});
+      if (!ev.empty() && ev.front().reachable && !ev.front().singular) return pose;
+    } catch (const std::exception&) {
+      // a mechanism without evaluate at this pose: try the next candidate
+    }
+  }
+  return {circle.center.x, circle.center.y, 0.0};
 }
 
 Json region_report(const geometry::Region& region, double min_area) {
