@@ -390,34 +390,31 @@ geometry::Region FiveBar::leg_workspace(int leg) const {
   // In polar coordinates (ρ, ψ) about A the leg reaches C in working mode s with
   // the crank at q = ψ + s β(ρ) (inverse_leg), so with q in [lo, hi] the region is
   // ψ in [lo - s β, hi - s β]: bounded by the outer and inner circles and by the
-  // half circles of radius l2 about B(lo), B(hi) on the side s of the crank line.
-  // Built per chunk [t0, t1] (t1 - t0 <= pi, docs/theory/five_bar.md):
-  //   s = +1: (S ∪ HD(t0)) − HD(t1),  s = −1: (S ∪ HD(t1)) − HD(t0),
-  // S the annulus sector [t0, t1], HD(t) the half disk of radius l2 about B(t)
-  // on side s of the ray at t; everything finally ∩ the annulus.
+  // half circles of radius l2 about B(lo), B(hi) on the side s of the crank line
+  // (docs/theory/five_bar.md):
+  //   s = +1: (S ∪ HD(lo)) − HD(hi),  s = −1: (S ∪ HD(hi)) − HD(lo),
+  // S the annulus sector [lo, hi], HD(t) the half disk of radius l2 about B(t)
+  // on side s of the ray at t, then ∩ the annulus. Valid while the span plus
+  // β_max (the largest β over the annulus) stays within a turn; a longer span
+  // is the annulus minus the complementary span [hi, lo + 2π], which is shorter
+  // than β_max <= π.
   const int s = l.working_mode;
   const double big = 2.0 * r_out;
+  const double beta_max = l1 > l2 ? std::asin(l2 / l1) : (l1 == l2 ? pi / 2 : pi);
   auto half_disk = [&](double t) {
     const Point b = a + l1 * geometry::rational_direction(t).unit();
     const geometry::Region d = geometry::disk(b, l2);
     const geometry::Region side = geometry::annulus_sector(a, 0.0, big, t, pi);  // ψ in [t, t + π]: s = -1
     return s > 0 ? d.subtract(side) : d.intersect(side);
   };
-  const int chunks = std::max(1, static_cast<int>(std::ceil((hi - lo) / pi - 1e-12)));
-  std::vector<double> t{lo};
-  for (int k = 1; k <= chunks; ++k) {
-    const double target = k == chunks ? hi : lo + (hi - lo) * k / chunks;
-    t.push_back(snap_end(t.back(), target));
-  }
-  std::vector<geometry::Region> pieces;
-  geometry::Region previous = half_disk(t[0]);
-  for (int k = 0; k < chunks; ++k) {
-    const geometry::Region next = half_disk(t[k + 1]);
-    const geometry::Region sector = geometry::annulus_sector(a, r_in, r_out, t[k], t[k + 1] - t[k]);
-    pieces.push_back(s > 0 ? sector.unite(previous).subtract(next) : sector.unite(next).subtract(previous));
-    previous = next;
-  }
-  return geometry::Region::unite_all(pieces).intersect(ring);
+  auto swept = [&](double t0, double t1) {
+    t1 = snap_end(t0, t1);  // the sector's end ray is exactly HD(t1)'s ray
+    const geometry::Region sector = geometry::annulus_sector(a, r_in, r_out, t0, t1 - t0);
+    const geometry::Region h0 = half_disk(t0), h1 = half_disk(t1);
+    return s > 0 ? sector.unite(h0).subtract(h1) : sector.unite(h1).subtract(h0);
+  };
+  if (hi - lo + beta_max <= two_pi) return swept(lo, hi).intersect(ring);
+  return ring.subtract(swept(hi, lo + two_pi));
 }
 
 geometry::Region FiveBar::workspace() const { return leg_workspace(0).intersect(leg_workspace(1)); }
