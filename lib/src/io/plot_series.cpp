@@ -122,12 +122,21 @@ std::string line_chart_svg(const LineChart& chart, int width, int height) {
   o += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   o += "<defs><clipPath id=\"plot\"><rect x=\"" + px(left) + "\" y=\"" + px(top) + "\" width=\"" + px(w) +
        "\" height=\"" + px(h) + "\"/></clipPath></defs>\n";
-  // Title.
-  o += "<text x=\"" + px(left + w / 2) + "\" y=\"30\" font-size=\"18\" font-weight=\"bold\" text-anchor=\"middle\" "
-       "fill=\"#111\">" + escape(chart.title) + "</text>\n";
+  // Title, smaller when long (about 0.6 em per character).
+  const double title_size = std::clamp(width / (0.6 * std::max<double>(1.0, static_cast<double>(chart.title.size()))), 11.0, 18.0);
+  o += "<text x=\"" + px(width / 2.0) + "\" y=\"30\" font-size=\"" + px(title_size) +
+       "\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"#111\">" + escape(chart.title) + "</text>\n";
   // Grid and ticks.
   o += "<g stroke=\"#e3e3e3\" stroke-width=\"1\">\n";
-  const auto xt = nice_ticks(xr[0], xr[1]);
+  std::vector<double> xt;
+  if (chart.x_tick_step && *chart.x_tick_step > 0.0 && (xr[1] - xr[0]) / *chart.x_tick_step <= 40.0) {
+    const double step = *chart.x_tick_step;
+    for (double k = std::ceil(xr[0] / step - 1e-9); k * step <= xr[1] + 1e-9 * step; k += 1.0) {
+      xt.push_back(std::abs(k) < 0.5 ? 0.0 : k * step);
+    }
+  } else {
+    xt = nice_ticks(xr[0], xr[1]);
+  }
   const auto yt = nice_ticks(yr[0], yr[1]);
   for (double t : xt) o += "<line x1=\"" + px(X(t)) + "\" y1=\"" + px(top) + "\" x2=\"" + px(X(t)) + "\" y2=\"" + px(top + h) + "\"/>\n";
   for (double t : yt) o += "<line x1=\"" + px(left) + "\" y1=\"" + px(Y(t)) + "\" x2=\"" + px(left + w) + "\" y2=\"" + px(Y(t)) + "\"/>\n";
@@ -185,7 +194,25 @@ std::string line_chart_svg(const LineChart& chart, int width, int height) {
     std::size_t longest = 0;
     for (const PlotSeries& s : chart.series) longest = std::max(longest, s.label.size());
     const double lw = 44 + 7.4 * static_cast<double>(longest), lh = 8 + 20.0 * static_cast<double>(chart.series.size());
-    const double lx = left + w - lw - 10, ly = top + 10;
+    // The corner whose legend box covers the fewest data points.
+    double lx = left + w - lw - 10, ly = top + 10;
+    std::size_t fewest = std::numeric_limits<std::size_t>::max();
+    for (const auto& [cx, cy] : {std::pair{left + w - lw - 10, top + 10}, {left + 10, top + 10},
+                                 {left + w - lw - 10, top + h - lh - 10}, {left + 10, top + h - lh - 10}}) {
+      std::size_t covered = 0;
+      for (const PlotSeries& s : chart.series) {
+        for (std::size_t i = 0; i < s.x.size(); ++i) {
+          if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+          const double px_ = X(s.x[i]), py_ = Y(s.y[i]);
+          covered += px_ >= cx - 4 && px_ <= cx + lw + 4 && py_ >= cy - 4 && py_ <= cy + lh + 4;
+        }
+      }
+      if (covered < fewest) {
+        fewest = covered;
+        lx = cx;
+        ly = cy;
+      }
+    }
     o += "<g font-size=\"13\" fill=\"#111\">\n<rect x=\"" + px(lx) + "\" y=\"" + px(ly) + "\" width=\"" + px(lw) +
          "\" height=\"" + px(lh) + "\" fill=\"white\" fill-opacity=\"0.9\" stroke=\"#888\"/>\n";
     for (std::size_t k = 0; k < chart.series.size(); ++k) {

@@ -344,6 +344,7 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
       f.chart.series.push_back(series(k_label(k), th, [&](double t) { return kin.length(t); }));
     }
     f.chart.x_range = std::array<double, 2>{-90.0, 90.0};
+    f.chart.x_tick_step = 30.0;
     f.chart.caption = std::string(source) + ", eq. 2: d = a sqrt(1 + k² + 2k sin θ)";
     out.push_back(std::move(f));
   }
@@ -358,6 +359,7 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
       f.chart.series.push_back(series(k_label(k), th, [&](double t) { return kin.passive_angle(t) * rad2deg; }));
     }
     f.chart.x_range = std::array<double, 2>{-90.0, 90.0};
+    f.chart.x_tick_step = 30.0;
     f.chart.caption = std::string(source) + "; φ = atan2(k + sin θ, cos θ) from the normal of the fixed link";
     out.push_back(std::move(f));
   }
@@ -373,6 +375,7 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
           series(k_label(k), th, [&](double t) { return kin.transmission_angle(t) * rad2deg; }));
     }
     f.chart.x_range = std::array<double, 2>{-90.0, 90.0};
+    f.chart.x_tick_step = 30.0;
     f.chart.caption = std::string(source) + "; μ = φ − θ, J = a sin μ";
     out.push_back(std::move(f));
   }
@@ -387,6 +390,7 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
       f.chart.series.push_back(series(k_label(k), th, [&](double t) { return kin.jacobian(t); }));
     }
     f.chart.x_range = std::array<double, 2>{-75.0, 75.0};
+    f.chart.x_tick_step = 15.0;
     f.chart.caption = std::string(source) + ", eq. 7: J = a k cos θ / sqrt(1 + k² + 2k sin θ)";
     out.push_back(std::move(f));
   }
@@ -401,6 +405,7 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
       f.chart.series.push_back(series(k_label(k), th, [&](double t) { return 1.0 / kin.jacobian(t); }));
     }
     f.chart.x_range = std::array<double, 2>{-75.0, 75.0};
+    f.chart.x_tick_step = 15.0;
     f.chart.caption = std::string(source) + ", eq. 8: θ̇ = ḋ / J";
     out.push_back(std::move(f));
   }
@@ -415,34 +420,37 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
   std::snprintf(proto, sizeof proto, "a = %g, k = %g, θ in [%g°, %g°]", kin.a, kin.k, p.theta_min * rad2deg,
                 p.theta_max * rad2deg);
   const std::array<double, 2> xr{p.theta_min * rad2deg, p.theta_max * rad2deg};
+  const std::string unit = p.meters_per_unit == 1.0 ? "m" : (p.meters_per_unit == 1e-3 ? "mm" : "length unit");
   {
     PiJointFigure f{15, "pi_joint_fig15_resolution", {}};
     f.chart.title = "Output angular resolution (seed 002 fig. 15)";
     f.chart.x_label = "θ [°]";
     f.chart.y_label = "Δθ [°/step]";
     char label[64];
-    std::snprintf(label, sizeof label, "Δd = %g per step", act.resolution_per_step);
+    std::snprintf(label, sizeof label, "Δd = %g %s/step", act.resolution_per_step, unit.c_str());
     f.chart.series.push_back(
         series(label, th, [&](double t) { return act.resolution_per_step / kin.jacobian(t) * rad2deg; }));
     f.chart.x_range = xr;
+    f.chart.x_tick_step = 10.0 * std::ceil((xr[1] - xr[0]) / 120.0);
     f.chart.caption = std::string(source) + "; prototype " + proto + "; Δθ = Δd / J";
     out.push_back(std::move(f));
   }
   {
     PiJointFigure f{16, "pi_joint_fig16_angular_velocity", {}};
-    f.chart.title = "Output angular velocity at the maximal linear speed (seed 002 fig. 16)";
+    f.chart.title = "Output angular velocity (seed 002 fig. 16)";
     f.chart.x_label = "θ [°]";
     f.chart.y_label = "θ̇ [°/s]";
     char label[64];
-    std::snprintf(label, sizeof label, "ḋ = %g per s", act.max_speed);
+    std::snprintf(label, sizeof label, "ḋ = %g %s/s", act.max_speed, unit.c_str());
     f.chart.series.push_back(series(label, th, [&](double t) { return act.max_speed / kin.jacobian(t) * rad2deg; }));
     f.chart.x_range = xr;
+    f.chart.x_tick_step = 10.0 * std::ceil((xr[1] - xr[0]) / 120.0);
     f.chart.caption = std::string(source) + "; prototype " + proto + "; θ̇ = ḋ / J (eq. 8)";
     out.push_back(std::move(f));
   }
   {
     PiJointFigure f{17, "pi_joint_fig17_torque", {}};
-    f.chart.title = "Output static torque at the maximal force (seed 002 fig. 17)";
+    f.chart.title = "Output static torque (seed 002 fig. 17)";
     f.chart.x_label = "θ [°]";
     f.chart.y_label = "T [N·m]";
     char label[64];
@@ -450,6 +458,7 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
     f.chart.series.push_back(series(
         label, th, [&](double t) { return kin.torque(t, act.max_force_N) * p.meters_per_unit; }));
     f.chart.x_range = xr;
+    f.chart.x_tick_step = 10.0 * std::ceil((xr[1] - xr[0]) / 120.0);
     f.chart.caption = std::string(source) + "; prototype " + proto + "; T = J F (eq. 13)";
     out.push_back(std::move(f));
   }

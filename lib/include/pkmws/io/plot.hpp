@@ -25,6 +25,8 @@ struct LineChart {
   /// Axis ranges; default: the finite data range, widened to whole ticks.
   std::optional<std::array<double, 2>> x_range;
   std::optional<std::array<double, 2>> y_range;
+  /// Tick spacing on x (e.g. 30 for degrees); default: 1-2-5 steps.
+  std::optional<double> x_tick_step;
   std::string caption;  // one line under the plot (source, parameters)
 };
 
@@ -33,7 +35,8 @@ struct LineChart {
 std::vector<double> nice_ticks(double lo, double hi, int target = 6);
 
 /// The chart as a standalone SVG document: axes with ticks and tick labels,
-/// grid, axis labels, title, legend and caption. `width` x `height` pixels.
+/// grid, axis labels, title, legend (in the corner that hides the fewest data
+/// points) and caption. `width` x `height` pixels.
 /// Throws std::invalid_argument when no series has two finite points or a
 /// series' x and y sizes differ.
 std::string line_chart_svg(const LineChart& chart, int width = 760, int height = 500);
