@@ -182,3 +182,25 @@ TEST(RegionLoops, PolylineStaysWithinTolerance) {
     }
   }
 }
+
+TEST(RegionLoops, TinyMergedArcPiecesAreNotFullTurns) {
+  // Union of two crank-limited five-bar leg pieces with l1 = l2 (reported by the
+  // five-bar work): merged arc pieces ~1e-17 long have endpoints that round to
+  // one double and must sweep ~0, not 2 pi.
+  const double l = 0.23, deg = pi / 180;
+  const Point a{-0.1, 0.05};
+  auto half = [&](double t) {
+    const RationalDirection d = rational_direction(t);
+    const Point b{a.x + l * d.unit().x, a.y + l * d.unit().y};
+    return disk(b, l).subtract(annulus_sector(a, 0.0, 4 * l, t, pi));
+  };
+  const double t0 = -100 * deg, t2 = 130 * deg, t1 = t0 + (t2 - t0) / 2;
+  const Region p0 = annulus_sector(a, 0, 2 * l, t0, t1 - t0).unite(half(t0)).subtract(half(t1));
+  const Region p1 = annulus_sector(a, 0, 2 * l, t1, t2 - t1).unite(half(t1)).subtract(half(t2));
+  const double expected = p0.area() + p1.area() - p0.intersect(p1).area();
+  expect_rel(p0.unite(p1).area(), expected, 1e-12);
+  expect_rel(Region::unite_all({p0, p1}).area(), expected, 1e-12);
+  for (const Loop& loop : p0.unite(p1).loops()) {
+    for (const Curve& c : loop.curves) EXPECT_LE(std::abs(c.sweep()), 2 * pi);
+  }
+}

@@ -85,6 +85,22 @@ geometry::Curve::Kind kind_of(const XCurve& c) {
   return c.is_linear() ? geometry::Curve::Kind::segment : geometry::Curve::Kind::arc;
 }
 
+// Sweep of one x-monotone arc piece. A piece spans at most a half turn, so the
+// angle between its endpoints is unambiguous even when they round to one
+// double (a piece ~1e-17 long sweeps ~0, not a full turn).
+double piece_sweep(const XCurve& x, Point center, bool ccw) {
+  const Point s = to_point(x.source()), t = to_point(x.target());
+  double d = std::atan2(t.y - center.y, t.x - center.x) - std::atan2(s.y - center.y, s.x - center.x);
+  if (ccw) {
+    while (d < 0.0) d += 2.0 * std::numbers::pi;
+    if (d > 1.5 * std::numbers::pi) d = 0.0;  // rounding below zero of a tiny piece
+  } else {
+    while (d > 0.0) d -= 2.0 * std::numbers::pi;
+    if (d < -1.5 * std::numbers::pi) d = 0.0;
+  }
+  return d;
+}
+
 template <typename CurveIt>
 Loop make_loop(CurveIt begin, CurveIt end, bool hole, std::size_t& count) {
   std::vector<XCurve> xs(begin, end);
@@ -101,7 +117,9 @@ Loop make_loop(CurveIt begin, CurveIt end, bool hole, std::size_t& count) {
   for (std::size_t k = 0; k < xs.size(); ++k) {
     const XCurve& x = xs[(start + k) % xs.size()];
     if (k > 0 && same_support(xs[(start + k - 1) % xs.size()], x)) {
-      loop.curves.back().target = to_point(x.target());
+      geometry::Curve& last = loop.curves.back();
+      last.target = to_point(x.target());
+      if (last.kind == geometry::Curve::Kind::arc) last.swept += piece_sweep(x, last.center, last.ccw);
       continue;
     }
     geometry::Curve c;
@@ -113,6 +131,7 @@ Loop make_loop(CurveIt begin, CurveIt end, bool hole, std::size_t& count) {
       c.center = {to_double_exact(circle.center().x()), to_double_exact(circle.center().y())};
       c.radius = std::sqrt(to_double_exact(circle.squared_radius()));
       c.ccw = circle.orientation() == CGAL::COUNTERCLOCKWISE;
+      c.swept = piece_sweep(x, c.center, c.ccw);
     }
     loop.curves.push_back(c);
   }

@@ -17,6 +17,7 @@ double angle_of(Point p, Point c) { return std::atan2(p.y - c.y, p.x - c.x); }
 
 double Curve::sweep() const {
   if (kind == Kind::segment) return 0.0;
+  if (std::isfinite(swept)) return swept;
   double d = angle_of(target, center) - angle_of(source, center);
   if (ccw) {
     while (d <= 0.0) d += two_pi;   // a closed arc (source == target) is a full turn

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace pkmws::geometry {
@@ -51,6 +52,9 @@ struct Curve {
   Point center;          // arcs only
   double radius = 0.0;   // arcs only
   bool ccw = true;       // arcs only: direction of travel from source to target
+  /// Signed swept angle (radians) when known from the exact pieces; NaN means
+  /// "derive it from the endpoints" (closed endpoints then mean a full turn).
+  double swept = std::numeric_limits<double>::quiet_NaN();
   /// Signed swept angle of an arc in radians (positive = counter-clockwise).
   double sweep() const;
   double length() const;
