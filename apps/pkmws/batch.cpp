@@ -51,9 +51,15 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
         region = mech.model->workspace();
       } catch (const std::exception& e) {
         row["note"] = e.what();
+        std::string links;
+        if (mech.model->dof() == 1) {  // its curves instead of a region
+          const auto charts = write_curve_figures(mech, a->out);
+          row["charts"] = charts;
+          for (const auto& c : charts) links += " [" + c + "](" + c + ")";
+        }
         rows.push_back(row);
         md += "| " + stem + " | " + mech.name + " | " + mech.mechanism + " | – | | | | " +
-              std::string(e.what()) + " |\n";
+              std::string(e.what()) + links + " |\n";
         continue;
       }
       const double area = region.area();

@@ -29,6 +29,9 @@ void add_export(CLI::App& app, std::vector<Command>& commands);
 void add_kinematics(CLI::App& app, std::vector<Command>& commands);  // ik, dk, eval
 void add_info(CLI::App& app, std::vector<Command>& commands);
 void add_batch(CLI::App& app, std::vector<Command>& commands);
+void add_plot(CLI::App& app, std::vector<Command>& commands);
+/// Writes the curve charts of a 1-DOF file into `dir`; returns the file names.
+std::vector<std::string> write_curve_figures(const io::MechanismFile& mech, const std::string& dir);
 
 /// Milliseconds since `start`.
 double elapsed_ms(std::chrono::steady_clock::time_point start);

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   pkmws::cli::add_kinematics(app, commands);
   pkmws::cli::add_info(app, commands);
   pkmws::cli::add_batch(app, commands);
+  pkmws::cli::add_plot(app, commands);
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
     std::string names;

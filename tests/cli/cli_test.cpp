@@ -182,3 +182,17 @@ TEST_F(Cli, BatchWritesFiguresAndSummary) {
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_GT(rows[0]["area"].get<double>(), 0.0);
 }
+
+TEST_F(Cli, PlotWritesThePiJointCurvesAndRefusesOtherMechanisms) {
+  const Result r = run("plot " + dataset("pi_joint_prototype.json") + " --out " + dir_.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* stem : {"pi_joint_fig08_length", "pi_joint_fig15_resolution", "pi_joint_fig16_angular_velocity",
+                           "pi_joint_fig17_torque"}) {
+    const fs::path svg = dir_ / (std::string(stem) + ".svg");
+    ASSERT_TRUE(fs::exists(svg)) << stem;
+    EXPECT_NE(slurp(svg).find("<path"), std::string::npos) << stem;  // the curves
+  }
+  expect_bad_input(run("plot " + dataset("moma_m2_l250.json") + " --out " + dir_.string()), "pi_joint");
+  expect_bad_input(run("plot " + dataset("pi_joint_prototype.json") + " --out " + (dir_ / "nope").string()),
+                   "no such directory");
+}
