@@ -4,6 +4,7 @@
 //
 // All lengths are in the mechanism file's unit, angles in the file formats'
 // own convention (SVG: flags, DXF: degrees ccw, CSV: degrees signed).
+#include "io/text.hpp"
 #include "pkmws/io/export.hpp"
 
 #include <algorithm>
@@ -105,20 +106,6 @@ LoopMeasure measure(const std::vector<Component>& comps) {
                          std::abs(c.bbox.max.x), std::abs(c.bbox.max.y)});
   }
   return m;
-}
-
-std::string xml_escape(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 std::string json_escape(std::string_view text) {
@@ -238,7 +225,7 @@ std::string to_svg(const Region& region, const ExportOptions& options) {
        num(b.height() + 2 * margin) + "\">\n";
   s += "  <!-- pkmws exact workspace boundary: line segments and true circular arcs in the"
        " mechanism's coordinates (y up, flipped by the group transform)";
-  if (!options.units.empty()) s += "; unit: " + xml_escape(options.units);
+  if (!options.units.empty()) s += "; unit: " + detail::xml_escape(options.units);
   s += "; area = " + num(region.area()) + " -->\n";
   s += "  <g transform=\"scale(1,-1)\">\n";
   s += "    <path fill=\"#f4a6a6\" fill-rule=\"evenodd\" stroke=\"#7a1010\" stroke-width=\"" +

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "io/text.hpp"
 #include "pkmws/io/export.hpp"
 
 namespace pkmws::io {
@@ -58,20 +59,6 @@ std::string tick_label(long k, double step) {
   return (k < 0 ? "\u2212" : "") + std::string(buf);
 }
 
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 // Greedy word wrap at `width` characters (UTF-8 multibyte counted per byte;
 // close enough for a caption).
 std::vector<std::string> wrap(const std::string& text, std::size_t width) {
@@ -101,7 +88,7 @@ std::string line_el(Point a, Point b, const std::string& style) {
 }
 
 std::string text_el(Point at, const std::string& text, const std::string& style) {
-  return "<text x=\"" + px(at.x) + "\" y=\"" + px(at.y) + "\" " + style + ">" + escape(text) +
+  return "<text x=\"" + px(at.x) + "\" y=\"" + px(at.y) + "\" " + style + ">" + detail::xml_escape(text) +
          "</text>\n";
 }
 
@@ -259,7 +246,7 @@ std::string workspace_figure(const MechanismFile& file, const geometry::Region& 
   const double ylab_x = std::max(16.0, x_lo - 58.0);
   o += "<text x=\"" + px(ylab_x) + "\" y=\"" + px(y_lo + plot_h / 2) + "\" font-size=\"15\" " +
        "font-style=\"italic\" text-anchor=\"middle\" transform=\"rotate(-90 " + px(ylab_x) + " " +
-       px(y_lo + plot_h / 2) + ")\">" + escape("y" + unit) + "</text>\n";
+       px(y_lo + plot_h / 2) + ")\">" + detail::xml_escape("y" + unit) + "</text>\n";
 
   // Scale bar (one tick step, two if that is short) below the frame, right-
   // aligned in the x-label row, so that it never hides the workspace.

@@ -2,6 +2,7 @@
 // labels, light grid, axis labels, title, legend and caption. Deterministic
 // output; non-finite y values break a curve; points outside the y range are
 // clipped by an SVG clip path.
+#include "io/text.hpp"
 #include "pkmws/io/plot.hpp"
 
 #include <algorithm>
@@ -22,20 +23,6 @@ std::string px(double v) {
   if (!s.empty() && s.back() == '.') s.pop_back();
   if (s == "-0") s = "0";
   return s;
-}
-
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 double nice_step(double range, int target) {
@@ -125,7 +112,7 @@ std::string line_chart_svg(const LineChart& chart, int width, int height) {
   // Title, smaller when long (about 0.6 em per character).
   const double title_size = std::clamp(width / (0.6 * std::max<double>(1.0, static_cast<double>(chart.title.size()))), 11.0, 18.0);
   o += "<text x=\"" + px(width / 2.0) + "\" y=\"30\" font-size=\"" + px(title_size) +
-       "\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"#111\">" + escape(chart.title) + "</text>\n";
+       "\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"#111\">" + detail::xml_escape(chart.title) + "</text>\n";
   // Grid and ticks.
   o += "<g stroke=\"#e3e3e3\" stroke-width=\"1\">\n";
   std::vector<double> xt;
@@ -157,18 +144,18 @@ std::string line_chart_svg(const LineChart& chart, int width, int height) {
   o += "</g>\n<g font-size=\"13\" fill=\"#111\">\n";
   for (double t : xt) {
     o += "<text x=\"" + px(X(t)) + "\" y=\"" + px(top + h + 22) + "\" text-anchor=\"middle\">" +
-         escape(tick_label(t, xstep)) + "</text>\n";
+         detail::xml_escape(tick_label(t, xstep)) + "</text>\n";
   }
   for (double t : yt) {
     o += "<text x=\"" + px(left - 10) + "\" y=\"" + px(Y(t) + 4.5) + "\" text-anchor=\"end\">" +
-         escape(tick_label(t, ystep)) + "</text>\n";
+         detail::xml_escape(tick_label(t, ystep)) + "</text>\n";
   }
   o += "</g>\n";
   // Axis labels.
   o += "<text x=\"" + px(left + w / 2) + "\" y=\"" + px(top + h + 48) +
-       "\" font-size=\"15\" font-style=\"italic\" text-anchor=\"middle\">" + escape(chart.x_label) + "</text>\n";
+       "\" font-size=\"15\" font-style=\"italic\" text-anchor=\"middle\">" + detail::xml_escape(chart.x_label) + "</text>\n";
   o += "<text x=\"22\" y=\"" + px(top + h / 2) + "\" font-size=\"15\" font-style=\"italic\" text-anchor=\"middle\" "
-       "transform=\"rotate(-90 22 " + px(top + h / 2) + ")\">" + escape(chart.y_label) + "</text>\n";
+       "transform=\"rotate(-90 22 " + px(top + h / 2) + ")\">" + detail::xml_escape(chart.y_label) + "</text>\n";
   // Curves, broken at non-finite values.
   o += "<g clip-path=\"url(#plot)\" fill=\"none\" stroke-width=\"2\" stroke-linejoin=\"round\">\n";
   for (std::size_t k = 0; k < chart.series.size(); ++k) {
@@ -220,13 +207,13 @@ std::string line_chart_svg(const LineChart& chart, int width, int height) {
       o += "<line x1=\"" + px(lx + 8) + "\" y1=\"" + px(yy - 4) + "\" x2=\"" + px(lx + 34) + "\" y2=\"" + px(yy - 4) +
            "\" stroke=\"" + palette[k % std::size(palette)] + "\" stroke-width=\"2\"" +
            (chart.series[k].dashed ? " stroke-dasharray=\"7 4\"" : "") + "/>\n";
-      o += "<text x=\"" + px(lx + 40) + "\" y=\"" + px(yy) + "\">" + escape(chart.series[k].label) + "</text>\n";
+      o += "<text x=\"" + px(lx + 40) + "\" y=\"" + px(yy) + "\">" + detail::xml_escape(chart.series[k].label) + "</text>\n";
     }
     o += "</g>\n";
   }
   if (!chart.caption.empty()) {
     o += "<text x=\"" + px(left) + "\" y=\"" + px(height - 12.0) + "\" font-size=\"12\" fill=\"#444\">" +
-         escape(chart.caption) + "</text>\n";
+         detail::xml_escape(chart.caption) + "</text>\n";
   }
   o += "</svg>\n";
   return o;

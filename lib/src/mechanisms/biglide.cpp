@@ -1,6 +1,7 @@
 // Biglide (seed 003): simplified and real schemes; IK eq. 5-8, DK eq. 1-4,
 // zero position eq. 9, velocity ratio V/V_y (fig. 8), Jacobians, statics, and
 // the exact workspace of the simplified scheme (two leg bands).
+#include "mechanisms/common.hpp"
 #include "pkmws/mechanisms/biglide.hpp"
 
 #include <algorithm>
@@ -12,11 +13,13 @@
 #include <string>
 
 #include <Eigen/LU>
-#include <Eigen/SVD>
 
 #include "pkmws/geometry/primitives.hpp"
 
 namespace pkmws::mechanisms {
+
+using detail::format_number;
+using detail::mode_label;
 
 namespace {
 
@@ -26,16 +29,6 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr double singular_tol = 1e-9;
 constexpr int paper_branch = -1;  // eq. 5-8 take the minus roots
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-std::string mode_label(int b1, int b2) {
-  return "(" + std::to_string(b1) + "," + std::to_string(b2) + ")";
-}
 
 Point rotate(Point v, double angle) {
   const double c = std::cos(angle), s = std::sin(angle);
@@ -221,7 +214,7 @@ std::string Biglide::stroke_problem(int i, double q) const {
   const auto& s = params_.strokes[i];
   const double tol = singular_tol * (s[1] - s[0]);
   if (q < s[0] - tol || q > s[1] + tol) {
-    return "q" + std::to_string(i + 1) + " = " + num(q) + " outside stroke [" + num(s[0]) + ", " + num(s[1]) + "]";
+    return "q" + std::to_string(i + 1) + " = " + format_number(q) + " outside stroke [" + format_number(s[0]) + ", " + format_number(s[1]) + "]";
   }
   return "";
 }
@@ -305,17 +298,10 @@ std::vector<Evaluation> Biglide::evaluate(const Pose& pose, const Criteria& crit
     e.singularity = type1 && type2 ? "both" : type1 ? "type1" : type2 ? "type2" : "";
     const Eigen::Matrix2d jq = inverse_jacobian(t, b1, b2);
     const std::array<double, 2> vy{std::abs(jq(0, 1)), std::abs(jq(1, 1))};
-    if (type1 || !jq.allFinite()) {
-      e.jacobian_det = inf;
-      e.condition_number = inf;
-      e.velocity_ratio = inf;
-    } else {
-      e.jacobian_det = jq.determinant();
-      const Eigen::JacobiSVD<Eigen::Matrix2d> svd(jq);
-      const auto sv = svd.singularValues();
-      e.condition_number = type2 || sv(1) == 0.0 ? inf : sv(0) / sv(1);
+    detail::set_velocity_figures(e, jq, type1, type2);
+    if (std::isfinite(*e.velocity_ratio)) {
+      e.extra.push_back({"velocity_ratio_worst_direction", *e.velocity_ratio});
       e.velocity_ratio = std::max(vy[0], vy[1]);  // seed 003 fig. 8: V / V_y
-      e.extra.push_back({"velocity_ratio_worst_direction", sv(0)});
     }
     e.extra.push_back({"V1_over_Vy", vy[0]});
     e.extra.push_back({"V2_over_Vy", vy[1]});

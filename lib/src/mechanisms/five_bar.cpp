@@ -4,6 +4,7 @@
 // workspace (annuli, or with crank limits the region swept by each distal
 // circle; docs/theory/five_bar.md), Π-joint drives (seed 002 figure 5) and the
 // type-2 singularity curves.
+#include "mechanisms/common.hpp"
 #include "pkmws/mechanisms/five_bar.hpp"
 
 #include <algorithm>
@@ -15,11 +16,13 @@
 #include <string>
 
 #include <Eigen/LU>
-#include <Eigen/SVD>
 
 #include "pkmws/geometry/primitives.hpp"
 
 namespace pkmws::mechanisms {
+
+using detail::format_number;
+using detail::mode_label;
 
 namespace {
 
@@ -29,16 +32,6 @@ constexpr double rad2deg = 180.0 / pi;
 constexpr double inf = std::numeric_limits<double>::infinity();
 // Relative tolerance of the singularity, working-mode and limit tests.
 constexpr double singular_tol = 1e-9;
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-std::string mode_label(int s1, int s2) {
-  return "(" + std::to_string(s1) + "," + std::to_string(s2) + ")";
-}
 
 Point unit(double q) { return {std::cos(q), std::sin(q)}; }
 
@@ -110,9 +103,9 @@ FiveBar::FiveBar(std::array<FiveBarLeg, 2> legs) : legs_(legs) {
       if (!std::isfinite(p.base_angle)) throw std::invalid_argument(leg + "non-finite Π-joint base angle");
       const PiJointKinematics kin = pi_kinematics(l);
       if (!(p.stroke_min < p.stroke_max) || !(p.stroke_min > kin.length_min()) || !(p.stroke_max < kin.length_max())) {
-        throw std::invalid_argument(leg + "Π-joint stroke [" + num(p.stroke_min) + ", " + num(p.stroke_max) +
+        throw std::invalid_argument(leg + "Π-joint stroke [" + format_number(p.stroke_min) + ", " + format_number(p.stroke_max) +
                                     "] must lie strictly inside the parallelogram's d range (" +
-                                    num(kin.length_min()) + ", " + num(kin.length_max()) +
+                                    format_number(kin.length_min()) + ", " + format_number(kin.length_max()) +
                                     ") = (a|1 - k|, a(1 + k)), i.e. -90 < theta < 90 degrees");
       }
       // seed 002 eq. 3-5 at both ends of the stroke; q = base + sense * theta.
@@ -234,11 +227,11 @@ std::string FiveBar::limit_problem(int leg, double q) const {
   if (legs_[leg].pi_joint) {
     const auto d = pi_length(leg, q);
     const FiveBarPiDrive& p = *legs_[leg].pi_joint;
-    if (d) return "d" + i + " = " + num(*d) + " outside stroke [" + num(p.stroke_min) + ", " + num(p.stroke_max) + "]";
-    return "crank " + i + " at " + num(qq * rad2deg) + " deg puts its Π-joint outside (-90, 90) deg";
+    if (d) return "d" + i + " = " + format_number(*d) + " outside stroke [" + format_number(p.stroke_min) + ", " + format_number(p.stroke_max) + "]";
+    return "crank " + i + " at " + format_number(qq * rad2deg) + " deg puts its Π-joint outside (-90, 90) deg";
   }
-  return "theta" + i + " = " + num(qq * rad2deg) + " deg outside [" + num(lim[0] * rad2deg) + ", " +
-         num(lim[1] * rad2deg) + "] deg";
+  return "theta" + i + " = " + format_number(qq * rad2deg) + " deg outside [" + format_number(lim[0] * rad2deg) + ", " +
+         format_number(lim[1] * rad2deg) + "] deg";
 }
 
 std::vector<JointInfo> FiveBar::joints() const {
@@ -346,29 +339,10 @@ std::vector<Evaluation> FiveBar::evaluate(const Pose& pose, const Criteria& crit
         e.extra.push_back({"theta_pi" + std::to_string(i + 1) + "_deg", theta * rad2deg});
       }
     }
-    if (type1) {
-      e.jacobian_det = inf;
-      e.condition_number = inf;
-      e.velocity_ratio = inf;
-    } else {
-      const Eigen::Matrix2d jq = scale * j.B.inverse() * j.A;
-      e.jacobian_det = jq.determinant();
-      const Eigen::JacobiSVD<Eigen::Matrix2d> svd(jq);
-      const auto sv = svd.singularValues();
-      e.condition_number = type2 || sv(1) == 0.0 ? inf : sv(0) / sv(1);
-      e.velocity_ratio = sv(0);  // worst-case |dq| / |dC|
-    }
+    detail::set_velocity_figures(e, scale * j.B.inverse() * j.A, type1, type2);  // worst |dq| / |dC|
     // seed 004: cos α_i = |sin ε| for both legs (the force of leg i is along its
     // distal link; with actuator j locked C moves perpendicular to distal link j).
-    const double sin_eps = std::abs(det_a) / (l12 * l22);
-    const double alpha = std::acos(std::min(1.0, sin_eps)) * rad2deg;
-    e.pressure_angle_deg = {alpha, alpha};
-    if (criteria.load) {
-      // SPEC §1.5: R_i,max = f |v_i| with r_i . v_i = 1, |v_i| = 1 / |sin ε|; the
-      // moment is not transmitted to the point C.
-      const double r = sin_eps > 0.0 ? criteria.load->force_N / sin_eps : inf;
-      e.reactions_N = {r, r};
-    }
+    detail::set_point_platform_transmission(e, std::abs(det_a) / (l12 * l22), criteria);
     e.extra.push_back({"transmission_angle_deg", transmission_angle(c, q1, q2) * rad2deg});
     out.push_back(e);
   }

@@ -1,6 +1,7 @@
 // MOMA (seed 000): inverse kinematics eq. 5-6, robust direct kinematics, the
 // paper's closed form eq. 9-12 as a cross-check, Jacobians, singularities,
 // pressure angle and the exact workspace (intersection of two leg bands).
+#include "mechanisms/common.hpp"
 #include "pkmws/mechanisms/moma.hpp"
 
 #include <algorithm>
@@ -12,11 +13,13 @@
 #include <string>
 
 #include <Eigen/LU>
-#include <Eigen/SVD>
 
 #include "pkmws/geometry/primitives.hpp"
 
 namespace pkmws::mechanisms {
+
+using detail::format_number;
+using detail::mode_label;
 
 namespace {
 
@@ -28,16 +31,6 @@ constexpr double singular_tol = 1e-9;
 // inverse() accepts p_i up to this fraction of the stroke outside it, so that a
 // DK pose at p = stroke_min round-trips; reachable() (the grid test) is strict.
 constexpr double stroke_tol = 1e-12;
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-std::string mode_label(int b1, int b2) {
-  return "(" + std::to_string(b1) + "," + std::to_string(b2) + ")";
-}
 
 }  // namespace
 
@@ -181,8 +174,8 @@ std::vector<JointSolution> Moma::inverse(const Pose& pose) const {
       const MomaLeg& l = legs_[i];
       const double tol = stroke_tol * std::max(l.stroke_max - l.stroke_min, std::abs(l.stroke_max) + std::abs(l.stroke_min));
       if (s.joints[i] < l.stroke_min - tol || s.joints[i] > l.stroke_max + tol) {
-        s.reason = "p" + std::to_string(i + 1) + " = " + number(s.joints[i]) + " outside stroke [" +
-                   number(l.stroke_min) + ", " + number(l.stroke_max) + "]";
+        s.reason = "p" + std::to_string(i + 1) + " = " + format_number(s.joints[i]) + " outside stroke [" +
+                   format_number(l.stroke_min) + ", " + format_number(l.stroke_max) + "]";
         break;
       }
     }
@@ -206,8 +199,8 @@ std::vector<PoseSolution> Moma::direct(std::span<const double> q) const {
     for (int i = 0; i < 2 && s.reason.empty(); ++i) {
       const MomaLeg& l = legs_[i];
       if (!(q[i] >= l.stroke_min && q[i] <= l.stroke_max)) {
-        s.reason = "p" + std::to_string(i + 1) + " = " + number(q[i]) + " outside stroke [" +
-                   number(l.stroke_min) + ", " + number(l.stroke_max) + "]";
+        s.reason = "p" + std::to_string(i + 1) + " = " + format_number(q[i]) + " outside stroke [" +
+                   format_number(l.stroke_min) + ", " + format_number(l.stroke_max) + "]";
       }
     }
     for (int i = 0; i < 2 && s.reason.empty(); ++i) {
@@ -249,29 +242,9 @@ std::vector<Evaluation> Moma::evaluate(const Pose& pose, const Criteria& criteri
     e.singular = type1 || type2;
     e.singularity = type1 && type2 ? "both" : type1 ? "type1" : type2 ? "type2" : "";
     // dq = B^-1 A dP: the inverse-kinematic Jacobian.
-    if (type1) {
-      e.jacobian_det = inf;
-      e.condition_number = inf;
-      e.velocity_ratio = inf;
-    } else {
-      const Eigen::Matrix2d jq = j.B.inverse() * j.A;
-      e.jacobian_det = jq.determinant();
-      const Eigen::JacobiSVD<Eigen::Matrix2d> svd(jq);
-      const auto sv = svd.singularValues();
-      e.condition_number = type2 || sv(1) == 0.0 ? inf : sv(0) / sv(1);
-      e.velocity_ratio = sv(0);  // worst-case |dq| / |dP|
-    }
-    // Pressure angle: leg i pushes along rod i; with actuator j locked, P moves
-    // perpendicular to rod j, so cos(alpha_i) = |sin(eps)|, eps between the rods.
+    detail::set_velocity_figures(e, j.B.inverse() * j.A, type1, type2);
     const double sin_eps = std::abs(det_a) / (l1 * l2);
-    const double alpha = std::acos(std::min(1.0, sin_eps)) * rad2deg;
-    e.pressure_angle_deg = {alpha, alpha};
-    if (criteria.load) {
-      // Rod force for a force of norm f in the worst direction: f / |sin eps|.
-      // A point platform transmits no moment, so m does not enter.
-      const double r = sin_eps > 0.0 ? criteria.load->force_N / sin_eps : inf;
-      e.reactions_N = {r, r};
-    }
+    detail::set_point_platform_transmission(e, sin_eps, criteria);
     e.extra.push_back({"transmission_angle_deg", std::asin(std::min(1.0, sin_eps)) * rad2deg});
     out.push_back(e);
   }

@@ -1,6 +1,7 @@
 // Active Π-joint (seed 002): inverse/direct kinematics eq. 1-5, Jacobians
 // eq. 7, 9-11, statics eq. 12-15, accelerations eq. 17-20, singularities at
 // θ = ±90°, and the data of the seed's figures 8-12 and 15-17.
+#include "mechanisms/common.hpp"
 #include "pkmws/mechanisms/pi_joint.hpp"
 
 #include <algorithm>
@@ -13,6 +14,8 @@
 
 namespace pkmws::mechanisms {
 
+using detail::format_number;
+
 namespace {
 
 constexpr double pi = std::numbers::pi;
@@ -20,12 +23,6 @@ constexpr double rad2deg = 180.0 / pi;
 constexpr double inf = std::numeric_limits<double>::infinity();
 // Relative tolerance of the range and singularity tests.
 constexpr double tol = 1e-9;
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 }  // namespace
 
@@ -151,13 +148,13 @@ std::vector<JointInfo> PiJoint::joints() const { return {{"d", false}}; }
 std::string PiJoint::range_problem(double theta, double d) const {
   const double span = params_.theta_max - params_.theta_min;
   if (theta < params_.theta_min - tol * span || theta > params_.theta_max + tol * span) {
-    return "theta = " + num(theta * rad2deg) + " deg outside [" + num(params_.theta_min * rad2deg) + ", " +
-           num(params_.theta_max * rad2deg) + "] deg";
+    return "theta = " + format_number(theta * rad2deg) + " deg outside [" + format_number(params_.theta_min * rad2deg) + ", " +
+           format_number(params_.theta_max * rad2deg) + "] deg";
   }
   if (params_.stroke_min) {
     const double s = tol * (*params_.stroke_max - *params_.stroke_min);
     if (d < *params_.stroke_min - s || d > *params_.stroke_max + s) {
-      return "d = " + num(d) + " outside stroke [" + num(*params_.stroke_min) + ", " + num(*params_.stroke_max) + "]";
+      return "d = " + format_number(d) + " outside stroke [" + format_number(*params_.stroke_min) + ", " + format_number(*params_.stroke_max) + "]";
     }
   }
   return "";
@@ -168,7 +165,7 @@ std::vector<JointSolution> PiJoint::inverse(const Pose& pose) const {
   JointSolution s;
   s.mode = "parallelogram";
   if (!(std::abs(theta) < pi / 2)) {
-    s.reason = "theta = " + num(theta * rad2deg) + " deg outside (-90, 90) deg (seed 002 eq. 1)";
+    s.reason = "theta = " + format_number(theta * rad2deg) + " deg outside (-90, 90) deg (seed 002 eq. 1)";
     return {s};
   }
   s.joints = {params_.kinematics.length(theta)};  // seed 002 eq. 2

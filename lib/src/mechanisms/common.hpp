@@ -1,0 +1,43 @@
+// Pieces shared by the mechanism implementations. Private to the library.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "pkmws/mechanisms/mechanism.hpp"
+
+namespace pkmws::mechanisms::detail {
+
+inline constexpr double infinity = std::numeric_limits<double>::infinity();
+
+/// A value for a one-line reason ("p2 = 212.3 outside stroke [0, 200]").
+inline std::string format_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+/// Label of a two-leg working mode or branch pair, e.g. "(-1,1)".
+inline std::string mode_label(int first, int second) {
+  return "(" + std::to_string(first) + "," + std::to_string(second) + ")";
+}
+
+/// Fills jacobian_det, condition_number and velocity_ratio (largest singular
+/// value: worst-case |dq| / |dx|) from the inverse-kinematic Jacobian dq/dx;
+/// infinite at a type-1 singularity, infinite conditioning at a type-2 one.
+void set_velocity_figures(Evaluation& e, const Eigen::Matrix2d& dq_dx, bool type1, bool type2);
+
+/// Two legs meeting at a point platform: leg i pushes along its distal rod, and
+/// with actuator j locked the point moves perpendicular to rod j, so
+/// cos(alpha_i) = |sin eps| with eps the angle between the rods (seed 004). The
+/// worst force of norm f loads each rod with f / |sin eps|; a point transmits
+/// no moment. Fills pressure_angle_deg and (with a load) reactions_N.
+void set_point_platform_transmission(Evaluation& e, double abs_sin_eps, const Criteria& criteria);
+
+}  // namespace pkmws::mechanisms::detail
