@@ -100,6 +100,7 @@ const std::string kGuideLine = "stroke=\"#555555\" stroke-width=\"1.3\" stroke-d
 const std::string kLink = "stroke=\"#1f3a93\" stroke-width=\"4.5\" stroke-linecap=\"round\"";
 const std::string kJoint = "fill=\"white\" stroke=\"black\" stroke-width=\"1.6\"";
 const std::string kSlider = "fill=\"#c8d4f0\" stroke=\"#1f3a93\" stroke-width=\"1.6\"";
+const std::string kSingular = "fill=\"none\" stroke=\"#0a7d2c\" stroke-width=\"1.6\" stroke-dasharray=\"5 3\"";
 const std::string kTool = "fill=\"#d40000\" stroke=\"white\" stroke-width=\"1.5\"";
 
 }  // namespace
@@ -183,6 +184,17 @@ std::string workspace_figure(const MechanismFile& file, const geometry::Region& 
        ") scale(" + g17(s) + " " + g17(-s) + ")\">\n";
   o += "<path fill=\"" + kFill + "\" fill-rule=\"evenodd\" stroke=\"" + kOutline + "\" stroke-width=\"" +
        g17(outline) + "\" stroke-linejoin=\"round\" d=\"" + svg_path(region) + "\"/>\n</g>\n";
+
+  // Type-2 singularity curves (dashed), inside the frame.
+  for (const auto& curve : drawing.singular_curves) {
+    std::string pts;
+    for (const Point& p : curve) {
+      if (!frame.contains(p)) continue;
+      const Point q = to_px(p);
+      pts += px(q.x) + "," + px(q.y) + " ";
+    }
+    if (!pts.empty()) o += "<polyline points=\"" + pts + "\" " + kSingular + "/>\n";
+  }
 
   // The mechanism at the pose.
   if (mech) {
@@ -268,7 +280,8 @@ std::string workspace_figure(const MechanismFile& file, const geometry::Region& 
   if (legend) {
     y += 18;
     // Items: symbol 24 px, gap 8, label (~7.5 px per character at 13 px), gap 28.
-    const std::vector<std::string> names{"workspace", "guide", "rod / link", "joint", "tool point P"};
+    std::vector<std::string> names{"workspace", "guide", "rod / link", "joint", "tool point P"};
+    if (!drawing.singular_curves.empty()) names.push_back("singularity");  // type 2, dashed
     double total = 0.0;
     for (const auto& n : names) total += 24 + 8 + 7.5 * static_cast<double>(n.size()) + 28;
     double x = width / 2 - (total - 28) / 2;
@@ -285,7 +298,8 @@ std::string workspace_figure(const MechanismFile& file, const geometry::Region& 
           break;
         case 2: o += line_el({x + 2, y - 4}, {x + 22, y - 4}, kLink); break;
         case 3: o += "<circle cx=\"" + px(x + 12) + "\" cy=\"" + px(y - 4) + "\" r=\"5\" " + kJoint + "/>\n"; break;
-        default: o += "<circle cx=\"" + px(x + 12) + "\" cy=\"" + px(y - 4) + "\" r=\"5.5\" " + kTool + "/>\n";
+        case 4: o += "<circle cx=\"" + px(x + 12) + "\" cy=\"" + px(y - 4) + "\" r=\"5.5\" " + kTool + "/>\n"; break;
+        default: o += "<polyline points=\"" + px(x) + "," + px(y - 4) + " " + px(x + 24) + "," + px(y - 4) + "\" " + kSingular + "/>\n";
       }
       o += text_el({x + 32, y}, names[i], lt);
       x += 24 + 8 + 7.5 * static_cast<double>(names[i].size()) + 28;

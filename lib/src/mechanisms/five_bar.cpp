@@ -406,6 +406,7 @@ Drawing FiveBar::draw(const Pose& pose) const {
   Drawing d;
   const Point c{pose.x, pose.y};
   d.tool = c;
+  d.singular_curves = type2_singularity_curves(*this);
   d.guides.push_back({legs_[0].base, legs_[1].base});
   for (int i = 0; i < 2; ++i) {
     const FiveBarLeg& l = legs_[i];

@@ -89,6 +89,8 @@ struct Drawing {
   std::vector<Point> sliders;      // prismatic joints (sliders)
   std::vector<Point> base_points;  // fixed joints
   Point tool;                      // the platform point P
+  /// Type-2 (parallel) singularity loci in task space, as polylines (drawn dashed).
+  std::vector<std::vector<Point>> singular_curves;
 };
 
 class Mechanism {
