@@ -30,6 +30,8 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands);  // ik, dk, 
 void add_info(CLI::App& app, std::vector<Command>& commands);
 void add_batch(CLI::App& app, std::vector<Command>& commands);
 void add_plot(CLI::App& app, std::vector<Command>& commands);
+void add_grid(CLI::App& app, std::vector<Command>& commands);     // grid baseline
+void add_compare(CLI::App& app, std::vector<Command>& commands);  // exact vs grid
 /// Writes the curve charts of a 1-DOF file into `dir`; returns the file names.
 std::vector<std::string> write_curve_figures(const io::MechanismFile& mech, const std::string& dir);
 

@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   pkmws::cli::add_info(app, commands);
   pkmws::cli::add_batch(app, commands);
   pkmws::cli::add_plot(app, commands);
+  pkmws::cli::add_grid(app, commands);
+  pkmws::cli::add_compare(app, commands);
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
     std::string names;

@@ -127,6 +127,13 @@ CompareResult compare(const mechanisms::Mechanism& mechanism, const CompareOptio
   }
   const double exact = result.exact_area;
 
+  // Warm-up, not recorded: the first parallel call starts TBB's worker threads.
+  {
+    CartesianOptions warm;
+    warm.cells_x = warm.cells_y = 600;
+    (void)cartesian(mechanism, warm, options.execution);
+  }
+
   // Uniform Cartesian grid along the ladder.
   for (const std::size_t n : options.ladder) {
     CartesianOptions co;
