@@ -25,16 +25,25 @@ namespace pkmws::grid {
 
 namespace {
 
-struct Cell {
-  std::uint32_t i, j;  // column and row at the cell's level
-};
-
 struct Geometry {
   Box box;
   std::size_t base = 0;  // root cells per side
   int depth = 0;
   double hx(int level) const { return box.width() / (double(base) * std::ldexp(1.0, level)); }
   double hy(int level) const { return box.height() / (double(base) * std::ldexp(1.0, level)); }
+};
+
+// Cells of one level as their centres (structure of arrays, so the kernel and
+// the child generation vectorise). A child's centre is its parent's plus or
+// minus a quarter cell: exact in binary floating point up to the last bits,
+// and the certified radius carries a relative margin for that.
+struct Cells {
+  std::vector<double> x, y;
+  std::size_t size() const { return x.size(); }
+  void resize(std::size_t n) {
+    x.resize(n);
+    y.resize(n);
+  }
 };
 
 // Per root-cell task: counts per level (integers, summed in task order).
@@ -52,21 +61,14 @@ class Classifier {
   Classifier(const MembershipKernel& kernel, bool certified, const Geometry& g)
       : kernel_(kernel), certified_(certified), g_(g) {}
 
-  // state[k] for the cells at `level`.
-  void classify(const std::vector<Cell>& cells, int level, std::vector<std::int8_t>& state,
-                TaskCounts& counts) {
+  // state[k] for the cells (centres) at `level`.
+  void classify(const Cells& cells, int level, std::vector<std::int8_t>& state, TaskCounts& counts) {
     const std::size_t n = cells.size();
     state.resize(n);
     const double hx = g_.hx(level), hy = g_.hy(level);
     if (certified_) {
-      xs_.resize(n);
-      ys_.resize(n);
-      for (std::size_t k = 0; k < n; ++k) {
-        xs_[k] = g_.box.min.x + (double(cells[k].i) + 0.5) * hx;
-        ys_[k] = g_.box.min.y + (double(cells[k].j) + 0.5) * hy;
-      }
       const double radius = 0.5 * std::hypot(hx, hy) * (1.0 + 1e-12);
-      kernel_.classify(xs_.data(), ys_.data(), n, radius, state.data());
+      kernel_.classify(cells.x.data(), cells.y.data(), n, radius, state.data());
       counts.points += n;
       return;
     }
@@ -74,12 +76,11 @@ class Classifier {
     xs_.resize(5 * n);
     ys_.resize(5 * n);
     mask_.resize(5 * n);
+    const double ax = 0.5 * hx, ay = 0.5 * hy;
     for (std::size_t k = 0; k < n; ++k) {
-      const double x0 = g_.box.min.x + double(cells[k].i) * hx, y0 = g_.box.min.y + double(cells[k].j) * hy;
-      const double x1 = g_.box.min.x + double(cells[k].i + 1) * hx, y1 = g_.box.min.y + double(cells[k].j + 1) * hy;
-      const double xc = g_.box.min.x + (double(cells[k].i) + 0.5) * hx;
-      const double yc = g_.box.min.y + (double(cells[k].j) + 0.5) * hy;
-      const double px[5] = {xc, x0, x1, x0, x1}, py[5] = {yc, y0, y0, y1, y1};
+      const double xc = cells.x[k], yc = cells.y[k];
+      const double px[5] = {xc, xc - ax, xc + ax, xc - ax, xc + ax};
+      const double py[5] = {yc, yc - ay, yc - ay, yc + ay, yc + ay};
       for (int c = 0; c < 5; ++c) {
         xs_[5 * k + c] = px[c];
         ys_[5 * k + c] = py[c];
@@ -94,18 +95,11 @@ class Classifier {
     }
   }
 
-  // Centre test of leaves (the sampled rule already has it in its first point).
-  std::uint64_t centres_inside(const std::vector<Cell>& cells, int level, TaskCounts& counts) {
+  // Centre test of leaves.
+  std::uint64_t centres_inside(const Cells& cells, TaskCounts& counts) {
     const std::size_t n = cells.size();
-    const double hx = g_.hx(level), hy = g_.hy(level);
-    xs_.resize(n);
-    ys_.resize(n);
     mask_.resize(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      xs_[k] = g_.box.min.x + (double(cells[k].i) + 0.5) * hx;
-      ys_[k] = g_.box.min.y + (double(cells[k].j) + 0.5) * hy;
-    }
-    kernel_.points(xs_.data(), ys_.data(), n, mask_.data());
+    kernel_.points(cells.x.data(), cells.y.data(), n, mask_.data());
     counts.points += n;
     std::uint64_t in = 0;
     for (std::size_t k = 0; k < n; ++k) in += mask_[k];
@@ -121,33 +115,44 @@ class Classifier {
 };
 
 // Refines the undecided cells `cells` (at `level`) down to g.depth.
-void refine(Classifier& classifier, std::vector<Cell> cells, int level, const Geometry& g, TaskCounts& counts) {
+void refine(Classifier& classifier, Cells cells, int level, const Geometry& g, TaskCounts& counts) {
   std::vector<std::int8_t> state;
-  std::vector<Cell> children;
-  while (level < g.depth && !cells.empty()) {
-    children.clear();
-    children.reserve(4 * cells.size());
-    for (const Cell c : cells) {
-      for (std::uint32_t dj = 0; dj < 2; ++dj) {
-        for (std::uint32_t di = 0; di < 2; ++di) children.push_back({2 * c.i + di, 2 * c.j + dj});
-      }
-    }
+  Cells children;
+  while (level < g.depth && cells.size() > 0) {
+    const std::size_t n = cells.size();
     ++level;
-    classifier.classify(children, level, state, counts);
-    counts.evaluated[level] += children.size();
-    cells.clear();
-    for (std::size_t k = 0; k < children.size(); ++k) {
-      if (state[k] == cell_inside) {
-        ++counts.inside[level];
-      } else if (state[k] == cell_outside) {
-        ++counts.outside;
-      } else {
-        cells.push_back(children[k]);
-      }
+    const double qx = 0.5 * g.hx(level), qy = 0.5 * g.hy(level);  // parent centre to child centre
+    children.resize(4 * n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const double x = cells.x[k], y = cells.y[k];
+      children.x[4 * k + 0] = x - qx;
+      children.x[4 * k + 1] = x + qx;
+      children.x[4 * k + 2] = x - qx;
+      children.x[4 * k + 3] = x + qx;
+      children.y[4 * k + 0] = y - qy;
+      children.y[4 * k + 1] = y - qy;
+      children.y[4 * k + 2] = y + qy;
+      children.y[4 * k + 3] = y + qy;
     }
+    classifier.classify(children, level, state, counts);
+    counts.evaluated[level] += 4 * n;
+    // Branch-free compaction of the undecided children into `cells`.
+    cells.resize(4 * n);
+    std::size_t kept = 0;
+    std::uint64_t in = 0, out = 0;
+    for (std::size_t k = 0; k < 4 * n; ++k) {
+      cells.x[kept] = children.x[k];
+      cells.y[kept] = children.y[k];
+      kept += std::size_t(state[k] == cell_undecided);
+      in += std::uint64_t(state[k] == cell_inside);
+      out += std::uint64_t(state[k] == cell_outside);
+    }
+    cells.resize(kept);
+    counts.inside[std::size_t(level)] += in;
+    counts.outside += out;
   }
   counts.undecided += cells.size();
-  if (!cells.empty()) counts.undecided_centre_in += classifier.centres_inside(cells, level, counts);
+  if (cells.size() > 0) counts.undecided_centre_in += classifier.centres_inside(cells, counts);
 }
 
 }  // namespace
@@ -188,29 +193,33 @@ AdaptiveResult adaptive(const mechanisms::Mechanism& mechanism, const AdaptiveOp
   TaskCounts root;
   root.inside.assign(levels, 0);
   root.evaluated.assign(levels, 0);
-  std::vector<Cell> roots;
-  roots.reserve(g.base * g.base);
-  for (std::uint32_t j = 0; j < g.base; ++j) {
-    for (std::uint32_t i = 0; i < g.base; ++i) roots.push_back({i, j});
+  Cells roots;
+  roots.resize(g.base * g.base);
+  for (std::size_t j = 0; j < g.base; ++j) {
+    for (std::size_t i = 0; i < g.base; ++i) {
+      roots.x[j * g.base + i] = g.box.min.x + (double(i) + 0.5) * g.hx(0);
+      roots.y[j * g.base + i] = g.box.min.y + (double(j) + 0.5) * g.hy(0);
+    }
   }
   std::vector<std::int8_t> state;
   Classifier root_classifier(kernel, certified, g);
   root_classifier.classify(roots, 0, state, root);
   root.evaluated[0] = roots.size();
-  std::vector<Cell> straddling;
+  Cells straddling;
   for (std::size_t k = 0; k < roots.size(); ++k) {
     if (state[k] == cell_inside) {
       ++root.inside[0];
     } else if (state[k] == cell_outside) {
       ++root.outside;
     } else {
-      straddling.push_back(roots[k]);
+      straddling.x.push_back(roots.x[k]);
+      straddling.y.push_back(roots.y[k]);
     }
   }
   if (options.depth == 0) {
     root.undecided = straddling.size();
-    if (!straddling.empty()) root.undecided_centre_in = root_classifier.centres_inside(straddling, 0, root);
-    straddling.clear();
+    if (straddling.size() > 0) root.undecided_centre_in = root_classifier.centres_inside(straddling, root);
+    straddling.resize(0);
   }
 
   // One task per straddling root cell; results summed in task order.
@@ -224,7 +233,10 @@ AdaptiveResult adaptive(const mechanisms::Mechanism& mechanism, const AdaptiveOp
     c.inside.assign(levels, 0);
     c.evaluated.assign(levels, 0);
     Classifier classifier(kernel, certified, g);
-    refine(classifier, {straddling[t]}, 0, g, c);
+    Cells seed;
+    seed.x = {straddling.x[t]};
+    seed.y = {straddling.y[t]};
+    refine(classifier, std::move(seed), 0, g, c);
   });
   TaskCounts total = root;
   for (const TaskCounts& c : tasks) {
