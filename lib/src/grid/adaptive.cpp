@@ -56,10 +56,25 @@ struct TaskCounts {
   std::uint64_t points = 0;              // membership tests
 };
 
+// Buffers reused across levels, tasks and calls (one set per thread): a
+// fresh multi-megabyte vector per task costs page faults that cost more than
+// the membership tests.
+struct Scratch {
+  std::vector<double> xs, ys;
+  std::vector<std::uint8_t> mask;
+  std::vector<std::int8_t> state;
+  Cells cells, children;
+};
+
+Scratch& thread_scratch() {
+  thread_local Scratch scratch;
+  return scratch;
+}
+
 class Classifier {
  public:
-  Classifier(const MembershipKernel& kernel, bool certified, const Geometry& g)
-      : kernel_(kernel), certified_(certified), g_(g) {}
+  Classifier(const MembershipKernel& kernel, bool certified, const Geometry& g, Scratch& scratch)
+      : kernel_(kernel), certified_(certified), g_(g), xs_(scratch.xs), ys_(scratch.ys), mask_(scratch.mask) {}
 
   // state[k] for the cells (centres) at `level`.
   void classify(const Cells& cells, int level, std::vector<std::int8_t>& state, TaskCounts& counts) {
@@ -110,14 +125,20 @@ class Classifier {
   const MembershipKernel& kernel_;
   bool certified_;
   const Geometry& g_;
-  std::vector<double> xs_, ys_;
-  std::vector<std::uint8_t> mask_;
+  std::vector<double>& xs_;
+  std::vector<double>& ys_;
+  std::vector<std::uint8_t>& mask_;
 };
 
-// Refines the undecided cells `cells` (at `level`) down to g.depth.
-void refine(Classifier& classifier, Cells cells, int level, const Geometry& g, TaskCounts& counts) {
-  std::vector<std::int8_t> state;
-  Cells children;
+// Refines one straddling root cell (centre x, y) down to g.depth.
+void refine(Classifier& classifier, Scratch& scratch, double root_x, double root_y, const Geometry& g,
+            TaskCounts& counts) {
+  std::vector<std::int8_t>& state = scratch.state;
+  Cells& cells = scratch.cells;
+  Cells& children = scratch.children;
+  cells.x.assign(1, root_x);
+  cells.y.assign(1, root_y);
+  int level = 0;
   while (level < g.depth && cells.size() > 0) {
     const std::size_t n = cells.size();
     ++level;
@@ -201,8 +222,9 @@ AdaptiveResult adaptive(const mechanisms::Mechanism& mechanism, const AdaptiveOp
       roots.y[j * g.base + i] = g.box.min.y + (double(j) + 0.5) * g.hy(0);
     }
   }
+  Scratch root_scratch;
   std::vector<std::int8_t> state;
-  Classifier root_classifier(kernel, certified, g);
+  Classifier root_classifier(kernel, certified, g, root_scratch);
   root_classifier.classify(roots, 0, state, root);
   root.evaluated[0] = roots.size();
   Cells straddling;
@@ -232,11 +254,9 @@ AdaptiveResult adaptive(const mechanisms::Mechanism& mechanism, const AdaptiveOp
     TaskCounts& c = tasks[t];
     c.inside.assign(levels, 0);
     c.evaluated.assign(levels, 0);
-    Classifier classifier(kernel, certified, g);
-    Cells seed;
-    seed.x = {straddling.x[t]};
-    seed.y = {straddling.y[t]};
-    refine(classifier, std::move(seed), 0, g, c);
+    Scratch& scratch = thread_scratch();
+    Classifier classifier(kernel, certified, g, scratch);
+    refine(classifier, scratch, straddling.x[t], straddling.y[t], g, c);
   });
   TaskCounts total = root;
   for (const TaskCounts& c : tasks) {
