@@ -14,19 +14,24 @@ namespace pkmws::grid {
 
 namespace {
 
-// Running-best envelope of (time, error) sorted by time; errors of 0 are
-// clamped to 1e-300 so that logs stay finite.
+// Conservative envelope of (time, error) runs sorted by time: each run's
+// error is replaced by the worst error of it and every slower run, so a
+// lucky coarse run (cell-centre errors fluctuate) does not count as reaching
+// an accuracy the finer runs lose again. Of equal neighbours the slower one is
+// kept. Errors of 0 are clamped to 1e-300 so that logs stay finite.
 std::vector<std::pair<double, double>> envelope(std::vector<std::pair<double, double>> runs) {
   std::sort(runs.begin(), runs.end());
-  std::vector<std::pair<double, double>> out;
-  double best = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<double, double>> valid;
   for (auto [t, e] : runs) {
-    if (!(t > 0.0) || !std::isfinite(e)) continue;
-    e = std::max(e, 1e-300);
-    if (e < best) {
-      best = e;
-      out.push_back({t, e});
-    }
+    if (t > 0.0 && std::isfinite(t) && std::isfinite(e)) valid.push_back({t, std::max(e, 1e-300)});
+  }
+  for (std::size_t i = valid.size(); i-- > 1;) {
+    valid[i - 1].second = std::max(valid[i - 1].second, valid[i].second);
+  }
+  std::vector<std::pair<double, double>> out;
+  for (std::size_t i = 0; i < valid.size(); ++i) {
+    if (i + 1 < valid.size() && valid[i].second == valid[i + 1].second) continue;
+    out.push_back(valid[i]);
   }
   return out;
 }

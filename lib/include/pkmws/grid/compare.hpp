@@ -51,8 +51,10 @@ struct CompareRow {
 };
 
 /// Time a method needs for a given accuracy, interpolated log-log between the
-/// two runs that bracket it (the running best error is used, so the curve is
-/// monotone); `extrapolated` when no run reached it.
+/// two runs that bracket it. Each run counts with the worst error of itself
+/// and every slower run (a lucky coarse grid does not count as reaching an
+/// accuracy that finer grids lose again), so the curve is monotone;
+/// `extrapolated` when no run reached it.
 struct TimeAtAccuracy {
   std::string method;
   std::string accuracy;             // "observed" or "guaranteed"

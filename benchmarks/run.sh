@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# make bench: the Google Benchmark suite (short, bounded runs), then the report
+# generator, which measures exact against grid and writes docs/benchmarks.md
+# and docs/figures/bench_error_vs_time.svg. A few minutes on 2 cores.
+#   PKMWS_BUILD_DIR  build directory (default: build, what `make build` uses)
+#   BENCH_MIN_TIME   --benchmark_min_time per case in seconds (default 0.05)
+#   BENCH_FILTER     --benchmark_filter regex (default: all)
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${PKMWS_BUILD_DIR:-$root/build}"
+for exe in pkmws_bench pkmws_bench_report; do
+  if [ ! -x "$build/bin/$exe" ]; then
+    echo "run.sh: $build/bin/$exe not found; build first (make build, PKMWS_BUILD_BENCHMARKS=ON)" >&2
+    exit 2
+  fi
+done
+mkdir -p "$root/docs/figures"
+"$build/bin/pkmws_bench" \
+  --benchmark_min_time="${BENCH_MIN_TIME:-0.05}" \
+  --benchmark_filter="${BENCH_FILTER:-.}" \
+  --benchmark_out="$build/bench.json" --benchmark_out_format=json
+"$build/bin/pkmws_bench_report" \
+  --out "$root/docs/benchmarks.md" \
+  --figure "$root/docs/figures/bench_error_vs_time.svg" \
+  --gbench "$build/bench.json"
+echo "wrote docs/benchmarks.md and docs/figures/bench_error_vs_time.svg"
