@@ -84,32 +84,38 @@ JointSweepResult joint_sweep(const mechanisms::Mechanism& mechanism, const Joint
     const auto [lo, hi] = r.ranges[std::size_t(axis)];
     return k + 1 == n ? hi : lo + double(k) * (hi - lo) / double(n - 1);
   };
-  // One block per q1 sample; each collects its valid poses in q2 order.
-  std::vector<std::vector<geometry::Point>> per_block(n);
-  const std::size_t work = n * n * 64;
-  r.threads = pkmws::detail::threads_for(policy, n, work);
-  pkmws::detail::for_each_block(policy, n, work, [&](std::size_t a) {
-    double q[2] = {joint(0, a), 0.0};
-    for (std::size_t b = 0; b < n; ++b) {
-      q[1] = joint(1, b);
-      for (const auto& s : mechanism.direct(std::span<const double>(q, 2))) {
-        if (s.valid) per_block[a].push_back({s.pose.x, s.pose.y});
-      }
-    }
-  });
-  // Serial rasterisation in block order.
   const std::size_t m = options.raster_cells;
   const double hx = r.box.width() / double(m), hy = r.box.height() / double(m);
   std::vector<std::uint8_t> hit(m * m, 0);
-  for (const auto& block : per_block) {
-    for (const geometry::Point p : block) {
-      ++r.poses;
-      if (!r.box.contains(p)) continue;
-      const auto i = std::min(m - 1, std::size_t((p.x - r.box.min.x) / hx));
-      const auto j = std::min(m - 1, std::size_t((p.y - r.box.min.y) / hy));
-      hit[j * m + i] = 1;
+  // One block per q1 sample, collecting its valid poses in q2 order; blocks
+  // run in chunks so that memory stays bounded (~chunk x 2 samples points),
+  // each chunk rasterised serially in block order.
+  constexpr std::size_t chunk = 64;
+  std::vector<std::vector<geometry::Point>> per_block(std::min(chunk, n));
+  r.threads = pkmws::detail::threads_for(policy, std::min(chunk, n), std::min(chunk, n) * n * 64);
+  for (std::size_t first = 0; first < n; first += chunk) {
+    const std::size_t count = std::min(chunk, n - first);
+    pkmws::detail::for_each_block(policy, count, count * n * 64, [&](std::size_t k) {
+      std::vector<geometry::Point>& out = per_block[k];
+      out.clear();
+      double q[2] = {joint(0, first + k), 0.0};
+      for (std::size_t b = 0; b < n; ++b) {
+        q[1] = joint(1, b);
+        for (const auto& s : mechanism.direct(std::span<const double>(q, 2))) {
+          if (s.valid) out.push_back({s.pose.x, s.pose.y});
+        }
+      }
+    });
+    for (std::size_t k = 0; k < count; ++k) {
+      for (const geometry::Point p : per_block[k]) {
+        ++r.poses;
+        if (!r.box.contains(p)) continue;
+        const auto i = std::min(m - 1, std::size_t((p.x - r.box.min.x) / hx));
+        const auto j = std::min(m - 1, std::size_t((p.y - r.box.min.y) / hy));
+        hit[j * m + i] = 1;
+      }
+      if (options.keep_points) r.points.insert(r.points.end(), per_block[k].begin(), per_block[k].end());
     }
-    if (options.keep_points) r.points.insert(r.points.end(), block.begin(), block.end());
   }
   for (std::size_t j = 0; j < m; ++j) {
     for (std::size_t i = 0; i < m; ++i) {
