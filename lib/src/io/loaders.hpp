@@ -16,5 +16,8 @@ MechanismPtr load_moma(JsonReader& document);
 MechanismPtr load_five_bar(JsonReader& document);
 MechanismPtr load_biglide(JsonReader& document);
 MechanismPtr load_pi_joint(JsonReader& document);
+MechanismPtr load_three_rrp(JsonReader& document);
+MechanismPtr load_three_prp(JsonReader& document);
+MechanismPtr load_three_rpr(JsonReader& document);
 
 }  // namespace pkmws::io::detail

@@ -19,6 +19,9 @@ const std::map<std::string, Loader>& loaders() {
       {"five_bar", detail::load_five_bar},
       {"biglide", detail::load_biglide},
       {"pi_joint", detail::load_pi_joint},
+      {"three_rrp", detail::load_three_rrp},
+      {"three_prp", detail::load_three_prp},
+      {"three_rpr", detail::load_three_rpr},
   };
   return table;
 }

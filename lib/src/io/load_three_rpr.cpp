@@ -1,0 +1,66 @@
+// three_rpr files (SPEC §3.1): base [[x, y] x 3] (A_i), platform [[x, y] x 3]
+// (B_i in the platform frame), actuation "revolute" (R̲PR: base angles, the
+// planar PAMINSA) or "prismatic" (RP̲R: leg lengths), orientation_deg (the
+// constant orientation of the workspace), optional leg_limits [[min, max] x 3].
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "io/loaders.hpp"
+#include "pkmws/mechanisms/three_rpr.hpp"
+
+namespace pkmws::io::detail {
+
+namespace {
+constexpr double max_length = 1e15;
+std::string item(const std::string& field, std::size_t i) { return field + "[" + std::to_string(i) + "]"; }
+}  // namespace
+
+MechanismPtr load_three_rpr(JsonReader& document) {
+  const auto base = document.points("base", 3);
+  const auto platform = document.points("platform", 3);
+  for (const auto* pts : {&base, &platform}) {
+    const std::string key = pts == &base ? "base" : "platform";
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!(std::abs((*pts)[i].x) <= max_length && std::abs((*pts)[i].y) <= max_length)) {
+        throw InputError(item(document.field(key), i) + ": magnitude must not exceed 1e15");
+      }
+      if ((*pts)[i] == (*pts)[(i + 1) % 3]) {
+        throw InputError(item(document.field(key), (i + 1) % 3) + ": coincides with " + item(document.field(key), i));
+      }
+    }
+  }
+  const std::string actuation = document.one_of("actuation", {"revolute", "prismatic"});
+  const double orientation = std::fmod(document.number("orientation_deg"), 360.0) * std::numbers::pi / 180.0;
+  std::optional<std::array<std::array<double, 2>, 3>> limits;
+  if (document.has("leg_limits")) {
+    const auto& v = document.raw("leg_limits");
+    const std::string f = document.field("leg_limits");
+    if (!v.is_array() || v.size() != 3) throw InputError(f + ": expected three entries [min, max], one per leg");
+    std::array<std::array<double, 2>, 3> l{};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const std::string where = item(f, i);
+      if (!v[i].is_array() || v[i].size() != 2 || !v[i][0].is_number() || !v[i][1].is_number()) {
+        throw InputError(where + ": expected [min, max] (numbers)");
+      }
+      l[i] = {v[i][0].get<double>(), v[i][1].get<double>()};
+      if (!std::isfinite(l[i][0]) || !std::isfinite(l[i][1])) throw InputError(where + ": expected finite numbers");
+      if (!(l[i][0] >= 0.0)) throw InputError(where + ": the shortest leg length must not be negative");
+      if (!(l[i][0] < l[i][1])) throw InputError(where + ": expected [min, max] with min < max");
+      if (!(l[i][1] <= max_length)) throw InputError(where + ": magnitude must not exceed 1e15");
+    }
+    limits = l;
+  }
+  try {
+    return std::make_shared<mechanisms::ThreeRpr>(
+        std::array<geometry::Point, 3>{base[0], base[1], base[2]},
+        std::array<geometry::Point, 3>{platform[0], platform[1], platform[2]},
+        actuation == "revolute" ? mechanisms::ThreeRprActuation::revolute : mechanisms::ThreeRprActuation::prismatic,
+        orientation, limits);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("three_rpr: ") + e.what());
+  }
+}
+
+}  // namespace pkmws::io::detail
