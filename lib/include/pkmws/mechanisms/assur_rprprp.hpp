@@ -118,7 +118,13 @@ template <class T>
 Poly<T> add(const Poly<T>& a, const Poly<T>& b, int sign = 1) {
   Poly<T> r(std::max(a.size(), b.size()), T(0));
   for (std::size_t i = 0; i < a.size(); ++i) r[i] += a[i];
-  for (std::size_t i = 0; i < b.size(); ++i) r[i] += sign > 0 ? b[i] : -b[i];
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (sign > 0) {
+      r[i] += b[i];
+    } else {
+      r[i] -= b[i];
+    }
+  }
   return r;
 }
 
