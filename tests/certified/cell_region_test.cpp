@@ -1,0 +1,156 @@
+#include "pkmws/certified/cell_region.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "pkmws/geometry/primitives.hpp"
+
+namespace {
+
+using pkmws::certified::CellOptions;
+using pkmws::certified::CellState;
+using pkmws::geometry::Box;
+using pkmws::geometry::Point;
+
+// Conservative test of the closed disk |p - c| <= r: the nearest and farthest
+// points of a box from c decide it.
+pkmws::certified::CellTest disk_test(Point c, double r) {
+  return [c, r](const Box& b) {
+    const double nx = std::clamp(c.x, b.min.x, b.max.x) - c.x;
+    const double ny = std::clamp(c.y, b.min.y, b.max.y) - c.y;
+    const double fx = std::max(std::abs(b.min.x - c.x), std::abs(b.max.x - c.x));
+    const double fy = std::max(std::abs(b.min.y - c.y), std::abs(b.max.y - c.y));
+    const double margin = 1e-12 * r;
+    if (std::hypot(fx, fy) < r - margin) return CellState::inside;
+    if (std::hypot(nx, ny) > r + margin) return CellState::outside;
+    return CellState::undecided;
+  };
+}
+
+Box box(double x0, double y0, double x1, double y1) {
+  Box b;
+  b.min = {x0, y0};
+  b.max = {x1, y1};
+  return b;
+}
+
+TEST(CertifiedCover, DiskBoundsContainTheAreaAndShrinkWithDepth) {
+  const double r = 1.3;
+  const double exact = std::numbers::pi * r * r;
+  double previous_width = 1e300;
+  for (int depth = 2; depth <= 8; depth += 2) {
+    CellOptions o;
+    o.window = box(-2.0, -1.5, 2.5, 2.0);  // not square, disk off-centre
+    o.base = 8;
+    o.max_depth = depth;
+    const auto c = pkmws::certified::cover(disk_test({0.2, 0.1}, r), o);
+    const double lower = c.area_inside, upper = c.area_inside + c.area_undecided;
+    EXPECT_LE(lower, exact);
+    EXPECT_GE(upper, exact);
+    EXPECT_LT(upper - lower, previous_width);
+    // A boundary of length 2 pi r covered by cells of side h: width ~ 2 pi r h * const.
+    const double h = 4.5 / (8.0 * std::ldexp(1.0, depth));
+    EXPECT_LT(upper - lower, 4.0 * 2.0 * std::numbers::pi * r * h);
+    previous_width = upper - lower;
+  }
+}
+
+TEST(CertifiedCover, ThreadCountDoesNotChangeTheResult) {
+  CellOptions o;
+  o.window = box(-2, -2, 2, 2);
+  o.base = 4;
+  o.max_depth = 7;
+  o.threads = 1;
+  const auto a = pkmws::certified::cover(disk_test({0.3, -0.2}, 1.1), o);
+  o.threads = 2;
+  const auto b = pkmws::certified::cover(disk_test({0.3, -0.2}, 1.1), o);
+  EXPECT_EQ(a.area_inside, b.area_inside);
+  EXPECT_EQ(a.area_undecided, b.area_undecided);
+  EXPECT_EQ(a.tests, b.tests);
+  EXPECT_EQ(a.inside.size(), b.inside.size());
+}
+
+TEST(CertifiedCover, RejectsBadOptions) {
+  CellOptions o;
+  EXPECT_THROW(pkmws::certified::cover(disk_test({0, 0}, 1), o), std::invalid_argument);  // empty window
+  o.window = box(0, 0, 1, 1);
+  o.base = 0;
+  EXPECT_THROW(pkmws::certified::cover(disk_test({0, 0}, 1), o), std::invalid_argument);
+  o.base = 2;
+  o.max_depth = 30;
+  EXPECT_THROW(pkmws::certified::cover(disk_test({0, 0}, 1), o), std::invalid_argument);
+}
+
+TEST(CertifiedRegion, CertifyWithinAnExactRegionEnclosesTheTrueSet) {
+  namespace g = pkmws::geometry;
+  // The true set: disk(c, r) ∩ square; its exact area comes from the exact engine.
+  const Point c{0.4, 0.1};
+  const double r = 1.0;
+  const g::Region square = g::rectangle(box(-0.5, -0.5, 1.5, 0.8));
+  const double truth = square.intersect(g::disk(c, r)).area();
+  CellOptions o;
+  o.base = 8;
+  o.max_depth = 6;
+  const auto cr = pkmws::certified::certify(disk_test(c, r), square, o);
+  EXPECT_FALSE(cr.exact);
+  EXPECT_EQ(cr.method(), "certified");
+  EXPECT_LE(cr.area_lower, truth);
+  EXPECT_GE(cr.area_upper, truth);
+  EXPECT_NEAR(cr.area_lower, cr.inner.area(), 1e-12);
+  // inner ⊆ outer ⊆ square.
+  EXPECT_LT(cr.inner.subtract(cr.outer).area(), 1e-12);
+  EXPECT_LT(cr.outer.subtract(square).area(), 1e-12);
+  EXPECT_LE(std::abs(cr.area_estimate() - truth), 0.5 * cr.width() + 1e-12);
+}
+
+TEST(CertifiedRegion, DecidedEverywhereIsExact) {
+  namespace g = pkmws::geometry;
+  const g::Region ring = g::annulus({0, 0}, 0.5, 1.0);
+  CellOptions o;
+  o.base = 4;
+  o.max_depth = 3;
+  const auto cr = pkmws::certified::certify([](const Box&) { return CellState::inside; }, ring, o);
+  EXPECT_TRUE(cr.exact);
+  EXPECT_EQ(cr.method(), "exact");
+  EXPECT_NEAR(cr.area_lower, 0.75 * std::numbers::pi, 1e-13);
+  EXPECT_EQ(cr.area_lower, cr.area_upper);
+}
+
+TEST(CertifiedRegion, SetAlgebraKeepsTheEnclosure) {
+  namespace g = pkmws::geometry;
+  const g::Region square = g::rectangle(box(-2, -2, 2, 2));
+  CellOptions o;
+  o.window = box(-2, -2, 2, 2);
+  o.base = 8;
+  o.max_depth = 5;
+  const auto d1 = pkmws::certified::certify(disk_test({-0.5, 0}, 1.0), square, o);
+  const auto d2 = pkmws::certified::certify(disk_test({0.5, 0}, 1.0), square, o);
+  const double lens = g::disk({-0.5, 0}, 1.0).intersect(g::disk({0.5, 0}, 1.0)).area();
+  const double both = 2.0 * std::numbers::pi - lens;
+  const auto i = pkmws::certified::intersect(d1, d2);
+  const auto u = pkmws::certified::unite(d1, d2);
+  const auto s = pkmws::certified::subtract(pkmws::certified::from_exact(square), u);
+  EXPECT_LE(i.area_lower, lens);
+  EXPECT_GE(i.area_upper, lens);
+  EXPECT_LE(u.area_lower, both);
+  EXPECT_GE(u.area_upper, both);
+  EXPECT_LE(s.area_lower, 16.0 - both);
+  EXPECT_GE(s.area_upper, 16.0 - both);
+  // Inclusion-exclusion holds for the bounds' midpoints to within the widths.
+  EXPECT_NEAR(u.area_estimate() + i.area_estimate(), d1.area_estimate() + d2.area_estimate(),
+              0.5 * (u.width() + i.width() + d1.width() + d2.width()));
+}
+
+TEST(CertifiedRegion, BoxesRegionMergesRuns) {
+  std::vector<Box> boxes{box(0, 0, 1, 1), box(1, 0, 2, 1), box(2, 0, 3, 1), box(0, 1, 1, 2)};
+  const auto r = pkmws::certified::boxes_region(boxes);
+  EXPECT_NEAR(r.area(), 4.0, 1e-14);
+  EXPECT_EQ(r.components().size(), 1u);
+  EXPECT_TRUE(pkmws::certified::boxes_region({}).empty());
+}
+
+}  // namespace
