@@ -1,8 +1,13 @@
 // pkmws ik / dk / eval: every working and assembly mode as JSON (SPEC §4).
 #include <cmath>
+#include <complex>
+#include <cstdio>
 #include <numbers>
 
 #include "cli.hpp"
+#include "pkmws/io/export.hpp"
+#include "pkmws/mechanisms/three_rpr.hpp"
+#include "pkmws/mechanisms/three_rrp.hpp"
 
 namespace pkmws::cli {
 
@@ -13,7 +18,94 @@ constexpr double deg = std::numbers::pi / 180.0;
 struct Args {
   std::string file;
   std::vector<std::string> values;
+  std::string svg;  // dk: figure prefix
 };
+
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+Json complex_json(const std::vector<std::complex<double>>& roots) {
+  Json out = Json::array();
+  for (const auto& z : roots) out.push_back({z.real(), z.imag()});
+  return out;
+}
+
+// dk of the Assur-group mechanisms: the seed's elimination next to the closed
+// form (seed 001 eq. 9-18), so a user sees the eliminant, its true degree,
+// every root and how far the two methods are apart.
+Json assur_report(const mechanisms::ThreeRrp& m, const std::vector<double>& q) {
+  const auto e = m.direct_elimination(q);
+  const auto closed = m.direct_closed_form(q);
+  int degree = 0;
+  for (int k = 8; k >= 0; --k) {
+    if (e.eliminant[static_cast<std::size_t>(k)] != 0.0L) { degree = k; break; }
+  }
+  Json coeffs = Json::array();
+  for (long double c : e.eliminant) coeffs.push_back(static_cast<double>(c));
+  Json roots = Json::array();
+  for (const auto& r : e.real_roots) {
+    roots.push_back({{"s", {r.s[0], r.s[1], r.s[2]}}, {"assembly", r.assembled ? "platform" : "mirror image"},
+                     {"residual", r.residual}});
+  }
+  double difference = 0.0;
+  const bool same_count = closed.size() == e.assemblies.size();
+  if (same_count) {
+    for (std::size_t k = 0; k < closed.size(); ++k)
+      for (std::size_t i = 0; i < 3; ++i)
+        difference = std::max(difference, geometry::norm(closed[k].vertices[i] - e.assemblies[k].vertices[i]));
+  }
+  return Json{{"method", "Sylvester elimination of s2, s3 (seed 001 eq. 12-13)"},
+              {"variable", "sigma = s1 / L"},
+              {"length_scale_L", e.length_scale},
+              {"nominal_degree", 8},
+              {"computed_degree", degree},
+              {"true_degree", e.roots.degree},
+              {"eliminant_ascending", coeffs},
+              {"real_roots_s1", e.real_s1},
+              {"complex_roots_s1", complex_json(e.complex_s1)},
+              {"real_solutions", roots},
+              {"assemblies", e.assemblies.size()},
+              {"closed_form_assemblies", closed.size()},
+              {"max_vertex_difference", same_count ? Json(difference) : Json(nullptr)}};
+}
+
+Json rpr_report(const mechanisms::ThreeRpr& m, const std::vector<double>& q) {
+  const std::array<double, 3> v{q[0], q[1], q[2]};
+  if (m.actuation() == mechanisms::ThreeRprActuation::revolute) {
+    const auto d = m.direct_from_angles(v);
+    return Json{{"method", "base angles: linear in the platform position, one trigonometric equation in phi"},
+                {"poses", d.poses.size()},
+                {"continuum", d.continuum}};
+  }
+  const auto d = m.direct_from_lengths(v);
+  Json coeffs = Json::array();
+  for (long double c : d.eliminant) coeffs.push_back(static_cast<double>(c));
+  Json real = Json::array();
+  for (const auto& r : d.roots.real) real.push_back(r.value);
+  return Json{{"method", "sextic in t = tan((phi - phi0) / 2)"},
+              {"phi0_deg", d.phi_offset / deg},
+              {"degree", d.roots.degree},
+              {"eliminant_ascending", coeffs},
+              {"real_roots_t", real},
+              {"complex_roots_t", complex_json(d.roots.complex)},
+              {"poses", d.poses.size()},
+              {"continuum", d.continuum}};
+}
+
+// The constant-orientation workspace at phi where the mechanism has one
+// (empty when it is unbounded), for the per-assembly-mode figures.
+geometry::Region workspace_at(const mechanisms::Mechanism& m, double phi) {
+  try {
+    if (const auto* r = dynamic_cast<const mechanisms::ThreeRrp*>(&m)) return r->workspace_at(phi);
+    if (const auto* r = dynamic_cast<const mechanisms::ThreeRpr*>(&m)) return r->workspace_at(phi);
+    return m.workspace();
+  } catch (const std::exception&) {
+    return geometry::Region{};
+  }
+}
 
 // Joint values in file units: lengths as they are, angles in degrees.
 Json joints_json(const mechanisms::Mechanism& m, const std::vector<double>& q) {
@@ -85,9 +177,11 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands) {
   }});
 
   auto dk = std::make_shared<Args>();
-  commands.push_back({add(app, "dk", "Direct kinematics: platform pose of every assembly mode",
-                          "Q1 Q2 [Q3] (joint values; angles in degrees; D for the Pi-joint)", dk),
-                      [dk] {
+  auto* dk_app = add(app, "dk", "Direct kinematics: platform pose of every assembly mode",
+                     "Q1 Q2 [Q3] (joint values; angles in degrees; D for the Pi-joint)", dk);
+  dk_app->add_option("--svg", dk->svg,
+                     "Write a figure per assembly mode to PREFIX_<k>.svg (the mechanism over its workspace)");
+  commands.push_back({dk_app, [dk] {
     const auto mech = io::load_mechanism(dk->file);
     const auto info = mech.model->joints();
     if (dk->values.size() != info.size()) {
@@ -102,7 +196,9 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands) {
     Json out = header(mech);
     out["joints"] = joints_json(*mech.model, q);
     Json sols = Json::array();
-    for (const auto& s : mech.model->direct(q)) {
+    const auto solutions = mech.model->direct(q);
+    for (std::size_t k = 0; k < solutions.size(); ++k) {
+      const auto& s = solutions[k];
       Json j{{"mode", s.mode}, {"valid", s.valid}, {"pose", pose_json(mech.model->dof(), s.pose)}};
       if (!s.platform_points.empty()) {
         Json pts = Json::array();
@@ -110,9 +206,29 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands) {
         j["platform_points"] = pts;
       }
       if (!s.valid) j["reason"] = s.reason;
+      if (!dk->svg.empty() && mech.model->dof() >= 2) {
+        // One figure per assembly mode (seed 001 figure 4): the mechanism at the
+        // pose over its constant-orientation workspace.
+        const std::string path = dk->svg + "_" + std::to_string(k + 1) + ".svg";
+        const geometry::Region ws = workspace_at(*mech.model, s.pose.phi);
+        io::FigureOptions fo;
+        fo.title = "Assembly mode " + std::to_string(k + 1) + " of " + std::to_string(solutions.size()) + " (" +
+                   s.mode + ")";
+        std::string pose_text = "pose x = " + short_number(s.pose.x) + ", y = " + short_number(s.pose.y);
+        if (mech.model->dof() == 3) pose_text += ", phi = " + short_number(s.pose.phi / deg) + " deg";
+        fo.caption = mech.name + ". " + pose_text + (ws.empty() ? "" : "; shaded: the workspace at this orientation") +
+                     (s.valid ? "" : "; not valid: " + s.reason);
+        io::write_file_atomic(path, io::workspace_figure(mech, ws, s.pose, fo));
+        j["figure"] = path;
+      }
       sols.push_back(j);
     }
     out["solutions"] = sols;
+    if (const auto* rrp = dynamic_cast<const mechanisms::ThreeRrp*>(mech.model.get())) {
+      out["elimination"] = assur_report(*rrp, q);
+    } else if (const auto* rpr = dynamic_cast<const mechanisms::ThreeRpr*>(mech.model.get())) {
+      out["eliminant"] = rpr_report(*rpr, q);
+    }
     print_json(out);
     return 0;
   }});

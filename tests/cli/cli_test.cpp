@@ -196,3 +196,55 @@ TEST_F(Cli, PlotWritesThePiJointCurvesAndRefusesOtherMechanisms) {
   expect_bad_input(run("plot " + dataset("pi_joint_prototype.json") + " --out " + (dir_ / "nope").string()),
                    "no such directory");
 }
+
+namespace {
+
+TEST_F(Cli, ThreeDofDirectKinematicsGivesEveryAssemblyMode) {
+  // 3-RRP of seed 001 (reconstructed), joint values (60, 10, 10) deg.
+  auto r = run("dk " + dataset("three_rrp_seed001.json") + " 60 10 10 --svg " + (dir_ / "rrp").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["solutions"].size(), 2u);
+  for (const auto& s : j["solutions"]) {
+    EXPECT_EQ(s["pose"].size(), 3u);
+    EXPECT_EQ(s["platform_points"].size(), 3u);
+    EXPECT_TRUE(fs::exists(s["figure"].get<std::string>()));
+  }
+  EXPECT_EQ(j["elimination"]["nominal_degree"], 8);
+  EXPECT_EQ(j["elimination"]["true_degree"], 4);
+  EXPECT_EQ(j["elimination"]["closed_form_assemblies"], 2);
+  EXPECT_LT(j["elimination"]["max_vertex_difference"].get<double>(), 1e-9);
+  // Each assembly goes back through `ik` to the same crank angles in one working mode.
+  for (const auto& s : j["solutions"]) {
+    const auto pose = s["pose"];
+    const auto ik = run("ik " + dataset("three_rrp_seed001.json") + " " + pose[0].dump() + " " + pose[1].dump() + " " +
+                        pose[2].dump());
+    ASSERT_EQ(ik.status, 0) << ik.err;
+    const auto k = nlohmann::json::parse(ik.out);
+    EXPECT_EQ(k["solutions"].size(), 8u);
+    bool found = false;
+    for (const auto& m : k["solutions"]) {
+      const auto q = m["joints"];
+      found = found || (std::abs(q["phi1_deg"].get<double>() - 60) < 1e-7 &&
+                        std::abs(q["phi2_deg"].get<double>() - 10) < 1e-7 &&
+                        std::abs(q["phi3_deg"].get<double>() - 10) < 1e-7);
+    }
+    EXPECT_TRUE(found);
+  }
+
+  r = run("dk " + dataset("three_prp_example.json") + " 40 40 40");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["solutions"].size(), 2u);
+
+  r = run("dk " + dataset("three_rpr_prismatic.json") + " 1.809 1.142 0.694");
+  ASSERT_EQ(r.status, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["solutions"].size(), 6u);
+  EXPECT_EQ(j["eliminant"]["degree"], 6);
+
+  r = run("dk " + dataset("three_rpr_prismatic.json") + " 1.809 1.142");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
+}
+
+}  // namespace
