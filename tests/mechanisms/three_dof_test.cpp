@@ -169,6 +169,11 @@ TEST(AssurGroup, EliminantHasTrueDegreeFourInExactArithmetic) {
   const std::array<Q, 3> cosine{Q(1, 2), Q(1, 3), Q(1, 5)};
   const auto e = assur_eliminant(assur_quadratics(side, cosine, std::array<Q, 3>{10, 20, 30}));
   EXPECT_NE(e[8], 0);
+  // ... and equals 16 G^2, G = cos²α1 + cos²α2 + cos²α3 + 2 cos α1 cos α2 cos α3 - 1
+  // (zero exactly for the angles of a triangle).
+  const Q g = cosine[0] * cosine[0] + cosine[1] * cosine[1] + cosine[2] * cosine[2] +
+              2 * cosine[0] * cosine[1] * cosine[2] - 1;
+  EXPECT_EQ(e[8], 16 * g * g);
 }
 
 TEST(AssurGroup, EliminantRootsAreTheTrianglesAndTheirMirrorImages) {
