@@ -503,3 +503,32 @@ TEST(ThreeRpr, AnnulusWorkspaceMatchesAGridCount) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ThreeRpr, TracedSingularityOfPaminsaIsTheSeedsCircle) {
+  // Seed 004: for fixed phi the type-2 singularity of the planar PAMINSA
+  // (actuated base revolutes) is the circle about O of radius
+  // sqrt(R_b^2 + R_p^2 - 2 R_b R_p cos phi). The drawing traces det A = 0.
+  const double rb = 0.35, rp = 0.1;
+  const ThreeRpr m = ThreeRpr::symmetric(rb, rp, ThreeRprActuation::revolute);
+  for (double phi_deg : {0.0, 25.0, 50.0}) {
+    const double phi = phi_deg * pi / 180.0;
+    const double radius = std::sqrt(rb * rb + rp * rp - 2 * rb * rp * std::cos(phi));
+    const auto d = m.draw({0.0, 0.0, phi});
+    ASSERT_FALSE(d.singular_curves.empty());
+    std::size_t points = 0;
+    double turning = 0.0;
+    for (const auto& curve : d.singular_curves) {
+      for (std::size_t k = 0; k < curve.size(); ++k) {
+        EXPECT_NEAR(std::hypot(curve[k].x, curve[k].y), radius, 1e-9) << "phi " << phi_deg;
+        if (k > 0) turning += std::remainder(std::atan2(curve[k].y, curve[k].x) - std::atan2(curve[k - 1].y, curve[k - 1].x), 2 * pi);
+      }
+      points += curve.size();
+    }
+    EXPECT_GT(points, 100u);
+    EXPECT_NEAR(std::abs(turning), 2 * pi, 0.1);  // the whole circle
+  }
+}
+
+}  // namespace

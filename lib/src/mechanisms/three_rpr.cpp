@@ -4,6 +4,8 @@
 // workspace with leg limits. Derivations in docs/theory/three_dof.md.
 #include "pkmws/mechanisms/three_rpr.hpp"
 
+#include "mechanisms/contour.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -567,6 +569,22 @@ Drawing ThreeRpr::draw(const Pose& pose) const {
     d.joints.push_back(b[i]);
     d.sliders.push_back(0.5 * (base_[i] + b[i]));
   }
+  // Type-2 singularity at this orientation: det A = 0 (A's rows are normalised
+  // by positive factors, so its sign changes only there). Window: the
+  // workspace's box with leg limits, else the base enlarged by the platform.
+  geometry::Box window;
+  if (leg_limits_) {
+    window = bounds();
+  } else {
+    double reach = 0.0;
+    for (const Point& p : platform_) reach = std::max(reach, norm(p));
+    for (const Point& a : base_) window.expand(a);
+    const double pad = 0.25 * std::max(window.width(), window.height()) + 2.0 * reach;
+    window.min = {window.min.x - pad, window.min.y - pad};
+    window.max = {window.max.x + pad, window.max.y + pad};
+  }
+  d.singular_curves = zero_contours(
+      [&](Point p) { return transmission(Pose{p.x, p.y, pose.phi}).determinant; }, window, 160);
   return d;
 }
 
