@@ -1,7 +1,8 @@
 // three_rpr files (SPEC §3.1): base [[x, y] x 3] (A_i), platform [[x, y] x 3]
 // (B_i in the platform frame), actuation "revolute" (R̲PR: base angles, the
 // planar PAMINSA) or "prismatic" (RP̲R: leg lengths), orientation_deg (the
-// constant orientation of the workspace), optional leg_limits [[min, max] x 3].
+// constant orientation of the workspace), optional leg_limits [[min, max] x 3],
+// optional analysis_window [[xmin, ymin], [xmax, ymax]] (positions of P).
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -52,12 +53,29 @@ MechanismPtr load_three_rpr(JsonReader& document) {
     }
     limits = l;
   }
+  std::optional<geometry::Box> window;
+  if (document.has("analysis_window")) {
+    const auto corners = document.points("analysis_window", 2);
+    const std::string f = document.field("analysis_window");
+    for (const auto& c : corners) {
+      if (!(std::abs(c.x) <= max_length && std::abs(c.y) <= max_length)) {
+        throw InputError(f + ": magnitude must not exceed 1e15");
+      }
+    }
+    if (!(corners[0].x < corners[1].x) || !(corners[0].y < corners[1].y)) {
+      throw InputError(f + ": expected [[xmin, ymin], [xmax, ymax]] with xmin < xmax and ymin < ymax");
+    }
+    geometry::Box b;
+    b.min = corners[0];
+    b.max = corners[1];
+    window = b;
+  }
   try {
     return std::make_shared<mechanisms::ThreeRpr>(
         std::array<geometry::Point, 3>{base[0], base[1], base[2]},
         std::array<geometry::Point, 3>{platform[0], platform[1], platform[2]},
         actuation == "revolute" ? mechanisms::ThreeRprActuation::revolute : mechanisms::ThreeRprActuation::prismatic,
-        orientation, limits);
+        orientation, limits, window);
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string("three_rpr: ") + e.what());
   }

@@ -26,10 +26,20 @@ const std::map<std::string, Loader>& loaders() {
   return table;
 }
 
-mechanisms::Criteria read_criteria(detail::JsonReader& doc) {
+mechanisms::Criteria read_criteria(detail::JsonReader& doc, std::vector<int>& reaction_legs) {
   mechanisms::Criteria c;
   if (!doc.has("criteria")) return c;
   auto r = doc.object("criteria");
+  if (r.has("reaction_legs")) {
+    const auto& v = r.raw("reaction_legs");
+    if (!v.is_array() || v.empty()) r.fail("reaction_legs", "expected a non-empty list of leg numbers (1-based)");
+    for (const auto& e : v) {
+      if (!e.is_number_integer() || e.get<long long>() < 1 || e.get<long long>() > 3) {
+        r.fail("reaction_legs", "expected leg numbers 1, 2 or 3");
+      }
+      reaction_legs.push_back(static_cast<int>(e.get<long long>()));
+    }
+  }
   if (r.has("max_pressure_angle_deg")) {
     const double a = r.number("max_pressure_angle_deg");
     if (!(a > 0.0 && a < 90.0)) r.fail("max_pressure_angle_deg", "must lie in (0, 90) degrees");
@@ -68,8 +78,14 @@ MechanismFile parse_mechanism(const nlohmann::json& document, const std::string&
     if (!s.is_object() && !s.is_string()) doc.fail("source", "expected an object or a string");
     file.source = s;
   }
-  file.criteria = read_criteria(doc);
+  file.criteria = read_criteria(doc, file.reaction_legs);
   file.model = loaders().at(file.mechanism)(doc);
+  for (int leg : file.reaction_legs) {
+    if (leg > file.model->dof() || file.model->dof() < 2) {
+      throw InputError("criteria.reaction_legs: leg " + std::to_string(leg) + " does not exist (the mechanism has " +
+                       std::to_string(file.model->dof() < 2 ? 1 : file.model->dof()) + " legs)");
+    }
+  }
   doc.finish();
   return file;
 }

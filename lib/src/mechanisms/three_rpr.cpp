@@ -117,9 +117,15 @@ std::pair<Poly, std::array<LD, 2>> divide_circular(Poly f) {
 }  // namespace
 
 ThreeRpr::ThreeRpr(std::array<Point, 3> base, std::array<Point, 3> platform, ThreeRprActuation actuation,
-                   double orientation, std::optional<std::array<std::array<double, 2>, 3>> leg_limits)
-    : base_(base), platform_(platform), actuation_(actuation), orientation_(orientation), leg_limits_(leg_limits) {
+                   double orientation, std::optional<std::array<std::array<double, 2>, 3>> leg_limits,
+                   std::optional<geometry::Box> analysis_window)
+    : base_(base), platform_(platform), actuation_(actuation), orientation_(orientation), leg_limits_(leg_limits),
+      window_(analysis_window) {
   if (!std::isfinite(orientation)) throw std::invalid_argument("non-finite orientation");
+  if (window_ && (!(window_->min.x < window_->max.x) || !(window_->min.y < window_->max.y) ||
+                  !std::isfinite(window_->width()) || !std::isfinite(window_->height()))) {
+    throw std::invalid_argument("analysis window must be [[xmin, ymin], [xmax, ymax]] with min < max");
+  }
   for (std::size_t i = 0; i < 3; ++i) {
     for (const Point p : {base_[i], platform_[i]}) {
       if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw std::invalid_argument("non-finite base or platform point");
@@ -501,11 +507,12 @@ std::vector<Evaluation> ThreeRpr::evaluate(const Pose& pose, const Criteria& cri
 // Workspace
 
 geometry::Region ThreeRpr::workspace_at(double phi) const {
-  if (!leg_limits_) {
+  if (!leg_limits_ && !window_) {
     throw std::runtime_error(
         "three_rpr: without leg limits every position is reachable at any orientation (the workspace is "
-        "the whole plane); give `leg_limits` [[min, max] x 3] in the file");
+        "the whole plane); give `leg_limits` [[min, max] x 3] or an `analysis_window` in the file");
   }
+  if (!leg_limits_) return geometry::rectangle(*window_);
   geometry::Region ws;
   for (std::size_t i = 0; i < 3; ++i) {
     // |P + R b'_i - A_i| in [ρ_min, ρ_max]: an annulus about A_i - R(phi) b'_i.
@@ -514,12 +521,13 @@ geometry::Region ThreeRpr::workspace_at(double phi) const {
     const geometry::Region ring = geometry::annulus(centre, l[0], l[1]);
     ws = i == 0 ? ring : ws.intersect(ring);
   }
-  return ws;
+  return window_ ? ws.intersect(geometry::rectangle(*window_)) : ws;
 }
 
 geometry::Region ThreeRpr::workspace() const { return workspace_at(orientation_); }
 
 bool ThreeRpr::reachable(const Pose& pose) const {
+  if (window_ && !window_->contains({pose.x, pose.y})) return false;
   const auto rho = leg_lengths(pose);
   for (int i = 0; i < 3; ++i) {
     if (!leg_problem(i, rho[static_cast<std::size_t>(i)]).empty()) return false;
@@ -528,6 +536,7 @@ bool ThreeRpr::reachable(const Pose& pose) const {
 }
 
 geometry::Box ThreeRpr::bounds() const {
+  if (!leg_limits_ && window_) return *window_;
   if (!leg_limits_) {
     throw std::runtime_error("three_rpr: the workspace is unbounded without leg limits; give `leg_limits`");
   }
@@ -554,6 +563,11 @@ geometry::Box ThreeRpr::bounds() const {
   const double pad = 1e-9 * scale;
   box.min = {box.min.x - pad, box.min.y - pad};
   box.max = {box.max.x + pad, box.max.y + pad};
+  if (window_) {
+    box.min = {std::max(box.min.x, window_->min.x), std::max(box.min.y, window_->min.y)};
+    box.max = {std::min(box.max.x, window_->max.x), std::min(box.max.y, window_->max.y)};
+    if (box.empty()) box = *window_;
+  }
   return box;
 }
 

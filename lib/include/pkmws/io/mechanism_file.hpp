@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -27,6 +28,9 @@ struct MechanismFile {
   std::string description;
   nlohmann::json source;        // paper, figure, notes (free-form object), null if absent
   mechanisms::Criteria criteria;
+  /// criteria.reaction_legs: the legs (1-based) whose R_i,max is limited by
+  /// max_reaction_N (seed 004 figs. 12-13 limit the joint B_1 only); empty: every leg.
+  std::vector<int> reaction_legs;
   nlohmann::json document;      // the validated document as read
   std::shared_ptr<const mechanisms::Mechanism> model;
 };

@@ -67,8 +67,11 @@ class ThreeRpr final : public Mechanism {
   /// constant orientation of workspace(); `leg_limits` [ρ_min, ρ_max] per leg.
   /// Throws std::invalid_argument on non-finite input, coincident base or
   /// platform points, or bad limits (0 <= ρ_min < ρ_max).
+  /// `analysis_window` (optional): a box of positions of P that bounds the
+  /// workspace where no leg limits do (PAMINSA's criterion-limited regions).
   ThreeRpr(std::array<Point, 3> base, std::array<Point, 3> platform, ThreeRprActuation actuation,
-           double orientation = 0.0, std::optional<std::array<std::array<double, 2>, 3>> leg_limits = std::nullopt);
+           double orientation = 0.0, std::optional<std::array<std::array<double, 2>, 3>> leg_limits = std::nullopt,
+           std::optional<geometry::Box> analysis_window = std::nullopt);
 
   /// The symmetric design of seed 004 (PAMINSA): A_i = R_b u(θ_i),
   /// b'_i = R_p u(θ_i), θ = -90°, 30°, 150°.
@@ -81,6 +84,7 @@ class ThreeRpr final : public Mechanism {
   ThreeRprActuation actuation() const { return actuation_; }
   double orientation() const { return orientation_; }
   const std::optional<std::array<std::array<double, 2>, 3>>& leg_limits() const { return leg_limits_; }
+  const std::optional<geometry::Box>& analysis_window() const { return window_; }
 
   /// B_i at a pose.
   std::array<Point, 3> platform_points(const Pose& pose) const;
@@ -109,8 +113,9 @@ class ThreeRpr final : public Mechanism {
   ThreeRprDirect direct_from_angles(const std::array<double, 3>& angles) const;
 
   /// Exact workspace at orientation phi with the leg limits: the intersection
-  /// of the annuli ρ_min <= |P - (A_i - R(phi) b'_i)| <= ρ_max. Throws
-  /// std::runtime_error without leg limits (the workspace is then the plane).
+  /// of the annuli ρ_min <= |P - (A_i - R(phi) b'_i)| <= ρ_max, clipped to the
+  /// analysis window when one is given. Throws std::runtime_error with neither
+  /// (the workspace is then the plane).
   geometry::Region workspace_at(double phi) const;
 
   // Mechanism. Joints: base angles q_i (revolute) or leg lengths ρ_i (prismatic).
@@ -136,6 +141,7 @@ class ThreeRpr final : public Mechanism {
   ThreeRprActuation actuation_;
   double orientation_ = 0.0;
   std::optional<std::array<std::array<double, 2>, 3>> leg_limits_;
+  std::optional<geometry::Box> window_;
   double characteristic_length_ = 1.0;
 };
 
