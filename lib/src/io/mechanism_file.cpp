@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "bodies/load_bodies.hpp"
 #include "io/loaders.hpp"
 
 namespace pkmws::io {
@@ -80,6 +81,7 @@ MechanismFile parse_mechanism(const nlohmann::json& document, const std::string&
   }
   file.criteria = read_criteria(doc, file.reaction_legs);
   file.model = loaders().at(file.mechanism)(doc);
+  if (doc.has("bodies")) file.bodies = detail::load_bodies(doc, file.model);
   for (int leg : file.reaction_legs) {
     if (leg > file.model->dof() || file.model->dof() < 2) {
       throw InputError("criteria.reaction_legs: leg " + std::to_string(leg) + " does not exist (the mechanism has " +

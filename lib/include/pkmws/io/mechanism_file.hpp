@@ -12,6 +12,10 @@
 
 #include "pkmws/mechanisms/mechanism.hpp"
 
+namespace pkmws::bodies {
+class BodyRig;  // pkmws/bodies/bodies.hpp
+}
+
 namespace pkmws::io {
 
 /// Bad input: the message is one line naming the problem (and the field path).
@@ -33,6 +37,8 @@ struct MechanismFile {
   std::vector<int> reaction_legs;
   nlohmann::json document;      // the validated document as read
   std::shared_ptr<const mechanisms::Mechanism> model;
+  /// The optional `bodies` (SPEC §3.2; moma and five_bar), null when absent.
+  std::shared_ptr<const bodies::BodyRig> bodies;
 };
 
 /// Parse and validate; throws InputError with the field's path on any problem.

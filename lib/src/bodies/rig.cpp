@@ -1,0 +1,374 @@
+// Part shapes of MOMA and the five-bar at a pose, and their enclosures over a
+// box of platform positions (docs/theory/interference.md).
+//
+// Over a box X (centre c, half-diagonal h) the joint values of a leg lie in an
+// interval obtained by interval arithmetic on the inverse kinematics: a moving
+// point then stays in a small convex set (a segment of the guide, or an arc of
+// the crank circle enclosed by its chord ⊕ the sagitta), so a link lies in the
+// convex hull of its two end sets (outer enclosure), and the part at every p
+// in X contains the part at the reference pose eroded by the largest
+// displacement of its end points (inner witness).
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "pkmws/bodies/bodies.hpp"
+#include "pkmws/mechanisms/five_bar.hpp"
+#include "pkmws/mechanisms/moma.hpp"
+
+namespace pkmws::bodies {
+
+namespace {
+
+using mechanisms::FiveBar;
+using mechanisms::Moma;
+constexpr double pi = std::numbers::pi;
+
+std::array<Point, 4> corners(const Box& b) {
+  return {Point{b.min.x, b.min.y}, Point{b.max.x, b.min.y}, Point{b.max.x, b.max.y}, Point{b.min.x, b.max.y}};
+}
+Point centre(const Box& b) { return {0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)}; }
+double half_diagonal(const Box& b) { return 0.5 * std::hypot(b.width(), b.height()); }
+
+// Rectangle along unit direction a: guide coordinates [s0, s1] from `origin`, half-width w across.
+std::vector<Point> guide_rectangle(Point origin, Point a, double s0, double s1, double w) {
+  const Point n{-a.y, a.x};
+  return {origin + s0 * a - w * n, origin + s1 * a - w * n, origin + s1 * a + w * n, origin + s0 * a + w * n};
+}
+
+// An inner witness: shape with radius r if positive, else none.
+std::optional<Shape> witness(std::vector<Point> core, double r) {
+  if (!(r > 0.0)) return std::nullopt;
+  return Shape{std::move(core), r};
+}
+
+Shape hull_of(std::vector<Point> pts, double r) { return Shape{convex_hull(std::move(pts)), r}; }
+
+// Range [lo, hi] of the linear function f over the box (attained at corners).
+template <class F>
+std::array<double, 2> linear_range(const Box& b, F&& f) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (Point c : corners(b)) {
+    const double v = f(c);
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  return {lo, hi};
+}
+
+// Shapes of the fixed parts (the same at every pose).
+Shape fixed_shape(const Part& part, const Moma* moma) {
+  if (part.kind == PartKind::obstacle) return Shape{part.polygon, 0.0};
+  const int i = part.leg;
+  const Point a = moma->guide_direction(i);
+  return Shape{guide_rectangle(moma->legs()[static_cast<std::size_t>(i)].reference, a, part.from, part.to,
+                               0.5 * part.width),
+               0.0};
+}
+
+// ---------------------------------------------------------------- MOMA
+class MomaRig final : public BodyRig {
+ public:
+  MomaRig(std::shared_ptr<const Moma> m, BodyModel model) : BodyRig(std::move(model)), m_(std::move(m)) {
+    for (const Part& p : model_.parts) {
+      if (p.fixed()) fixed_.push_back(fixed_shape(p, m_.get()));
+      else fixed_.push_back({});
+    }
+  }
+
+  std::optional<std::vector<Shape>> shapes_at(Point p) const override {
+    std::array<Point, 2> s;
+    for (int i = 0; i < 2; ++i) {
+      const auto& leg = m_->legs()[static_cast<std::size_t>(i)];
+      const auto q = m_->inverse_leg(i, p, leg.branch);  // seed 000 eq. 5
+      if (!q || *q < leg.stroke_min || *q > leg.stroke_max) return std::nullopt;
+      s[static_cast<std::size_t>(i)] = m_->slider(i, *q);
+    }
+    std::vector<Shape> out;
+    for (std::size_t k = 0; k < model_.parts.size(); ++k) {
+      const Part& part = model_.parts[k];
+      const auto leg = static_cast<std::size_t>(std::max(part.leg, 0));
+      switch (part.kind) {
+        case PartKind::platform_joint: out.push_back({{p}, part.radius}); break;
+        case PartKind::link: out.push_back({{s[leg], p}, part.radius}); break;
+        case PartKind::slider_block:
+          out.push_back({guide_rectangle(s[leg], m_->guide_direction(part.leg), -0.5 * part.length,
+                                         0.5 * part.length, 0.5 * part.width),
+                         0.0});
+          break;
+        default: out.push_back(fixed_[k]);
+      }
+    }
+    return out;
+  }
+
+  std::optional<BoxParts> enclose(const Box& box) const override {
+    const Point c = centre(box);
+    const double h = half_diagonal(box);
+    const auto cs = corners(box);
+    std::array<double, 2> plo{}, phi{};
+    for (int i = 0; i < 2; ++i) {
+      const auto& leg = m_->legs()[static_cast<std::size_t>(i)];
+      const Point a = m_->guide_direction(i);
+      // seed 000 eq. 6: B = a·(P − R); the rod reaches P iff l² − (a × (P − R))² >= 0.
+      const auto b = linear_range(box, [&](Point q) { return dot(a, q - leg.reference); });
+      const auto x = linear_range(box, [&](Point q) { return cross(a, q - leg.reference); });
+      const double x2_lo = (x[0] <= 0.0 && x[1] >= 0.0) ? 0.0 : std::min(x[0] * x[0], x[1] * x[1]);
+      const double x2_hi = std::max(x[0] * x[0], x[1] * x[1]);
+      const double l2 = leg.rod_length * leg.rod_length;
+      const double scale = leg.rod_length + std::abs(b[0]) + std::abs(b[1]);
+      const double tiny = 1e-12 * scale;
+      if (l2 - x2_lo < -tiny * scale) return std::nullopt;  // the rod cannot reach any point of X
+      const double sq_lo = std::sqrt(std::max(0.0, l2 - x2_hi)), sq_hi = std::sqrt(std::max(0.0, l2 - x2_lo));
+      // seed 000 eq. 5: p = B + branch sqrt(l² − (a × w)²)
+      double lo = leg.branch < 0 ? b[0] - sq_hi : b[0] + sq_lo;
+      double hi = leg.branch < 0 ? b[1] - sq_lo : b[1] + sq_hi;
+      lo = std::max(lo - tiny, leg.stroke_min);
+      hi = std::min(hi + tiny, leg.stroke_max);
+      if (lo > hi) return std::nullopt;  // out of stroke everywhere in X
+      plo[static_cast<std::size_t>(i)] = lo;
+      phi[static_cast<std::size_t>(i)] = hi;
+    }
+    BoxParts out;
+    for (int i = 0; i < 2; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      std::vector<Point> v;
+      for (Point q : cs) {
+        v.push_back(m_->slider(i, plo[k]) - q);
+        v.push_back(m_->slider(i, phi[k]) - q);
+      }
+      out.link_vectors[k] = hull_of(std::move(v), 0.0);
+    }
+    for (std::size_t k = 0; k < model_.parts.size(); ++k) {
+      const Part& part = model_.parts[k];
+      const auto leg = static_cast<std::size_t>(std::max(part.leg, 0));
+      const double pm = 0.5 * (plo[leg] + phi[leg]), dp = 0.5 * (phi[leg] - plo[leg]);
+      switch (part.kind) {
+        case PartKind::platform_joint:
+          out.parts.push_back({{{c}, part.radius + h}, witness({c}, part.radius - h)});
+          break;
+        case PartKind::link: {
+          std::vector<Point> v(cs.begin(), cs.end());
+          v.push_back(m_->slider(part.leg, plo[leg]));
+          v.push_back(m_->slider(part.leg, phi[leg]));
+          out.parts.push_back({hull_of(std::move(v), part.radius),
+                               witness({m_->slider(part.leg, pm), c}, part.radius - std::max(h, dp))});
+          break;
+        }
+        case PartKind::slider_block: {
+          const Point a = m_->guide_direction(part.leg);
+          const Point r = m_->legs()[leg].reference;
+          const double hl = 0.5 * part.length, hw = 0.5 * part.width;
+          Enclosure e{{guide_rectangle(r, a, plo[leg] - hl, phi[leg] + hl, hw), 0.0}, std::nullopt};
+          // Common to every slider position: [phi - hl, plo + hl]; rounded inside it.
+          const double in_half = hl - dp;
+          if (in_half > 0.0) {
+            const double rho = 0.5 * std::min(in_half, hw);
+            e.inner = Shape{guide_rectangle(r, a, pm - in_half + rho, pm + in_half - rho, hw - rho), rho};
+          }
+          out.parts.push_back(std::move(e));
+          break;
+        }
+        default: out.parts.push_back({fixed_[k], fixed_[k]});
+      }
+    }
+    return out;
+  }
+
+  std::optional<std::array<Point, 2>> link_vectors_at(Point p) const override {
+    std::array<Point, 2> out;
+    for (int i = 0; i < 2; ++i) {
+      const auto& leg = m_->legs()[static_cast<std::size_t>(i)];
+      const auto q = m_->inverse_leg(i, p, leg.branch);
+      if (!q || *q < leg.stroke_min || *q > leg.stroke_max) return std::nullopt;
+      out[static_cast<std::size_t>(i)] = m_->slider(i, *q) - p;
+    }
+    return out;
+  }
+  std::array<std::string, 2> joint_links() const override { return {"rod1", "rod2"}; }
+  Shape fixed_part(std::size_t index) const override { return fixed_.at(index); }
+
+ private:
+  std::shared_ptr<const Moma> m_;
+  std::vector<Shape> fixed_;
+};
+
+// ---------------------------------------------------------------- five-bar
+double wrap(double a) {
+  while (a > pi) a -= 2 * pi;
+  while (a <= -pi) a += 2 * pi;
+  return a;
+}
+
+class FiveBarRig final : public BodyRig {
+ public:
+  FiveBarRig(std::shared_ptr<const FiveBar> m, BodyModel model) : BodyRig(std::move(model)), m_(std::move(m)) {}
+
+  std::optional<std::array<Point, 2>> elbows(Point c) const {
+    if (!m_->reachable(mechanisms::Pose{c.x, c.y, 0.0})) return std::nullopt;
+    std::array<Point, 2> e;
+    for (int i = 0; i < 2; ++i) {
+      const auto q = m_->inverse_leg(i, c, m_->legs()[static_cast<std::size_t>(i)].working_mode);
+      if (!q) return std::nullopt;
+      e[static_cast<std::size_t>(i)] = m_->elbow(i, *q);
+    }
+    return e;
+  }
+
+  std::optional<std::vector<Shape>> shapes_at(Point p) const override {
+    const auto e = elbows(p);
+    if (!e) return std::nullopt;
+    std::vector<Shape> out;
+    for (const Part& part : model_.parts) {
+      const auto leg = static_cast<std::size_t>(std::max(part.leg, 0));
+      switch (part.kind) {
+        case PartKind::platform_joint: out.push_back({{p}, part.radius}); break;
+        case PartKind::link:
+          if (part.proximal) out.push_back({{m_->legs()[leg].base, (*e)[leg]}, part.radius});
+          else out.push_back({{(*e)[leg], p}, part.radius});
+          break;
+        default: out.push_back({part.polygon, 0.0});
+      }
+    }
+    return out;
+  }
+
+  // The elbow of leg i over the box: chord end points, sagitta, mid point, displacement bound.
+  struct ElbowSet {
+    bool coarse = true;  // true: only |B − A| = l1 is known
+    Point lo, hi, mid;
+    double sagitta = 0.0, displacement = 0.0;
+  };
+
+  std::optional<ElbowSet> elbow_set(int i, const Box& box) const {
+    const auto& leg = m_->legs()[static_cast<std::size_t>(i)];
+    const Point a = leg.base;
+    const double l1 = leg.proximal, l2 = leg.distal;
+    ElbowSet out;
+    const double tiny = 1e-12 * (l1 + l2);
+    // rho range: distance from A to the box (0 inside) .. farthest corner.
+    const double dx = std::max({box.min.x - a.x, 0.0, a.x - box.max.x});
+    const double dy = std::max({box.min.y - a.y, 0.0, a.y - box.max.y});
+    const double rho_lo = std::hypot(dx, dy);
+    double rho_hi = 0.0;
+    for (Point q : corners(box)) rho_hi = std::max(rho_hi, norm(q - a));
+    // Reachable only in the annulus |l1 − l2| <= rho <= l1 + l2.
+    if (rho_lo > l1 + l2 + tiny || rho_hi < std::abs(l1 - l2) - tiny) return std::nullopt;
+    if (rho_lo <= tiny) return out;  // A in (or at) the box: the direction is unknown
+    const Point c = centre(box);
+    const double psi_c = std::atan2(c.y - a.y, c.x - a.x);
+    double d_lo = 0.0, d_hi = 0.0;
+    for (Point q : corners(box)) {
+      const double d = wrap(std::atan2(q.y - a.y, q.x - a.x) - psi_c);
+      d_lo = std::min(d_lo, d);
+      d_hi = std::max(d_hi, d);
+    }
+    // Law of cosines (SPEC §1.4): cos beta = (rho² + l1² − l2²) / (2 rho l1).
+    auto f = [&](double rho) { return (rho * rho + (l1 - l2) * (l1 + l2)) / (2.0 * rho * l1); };
+    double f_lo = std::min(f(rho_lo), f(rho_hi)), f_hi = std::max(f(rho_lo), f(rho_hi));
+    if (l1 > l2) {
+      const double r_star = std::sqrt((l1 - l2) * (l1 + l2));  // minimum of f
+      if (r_star > rho_lo && r_star < rho_hi) f_lo = std::min(f_lo, f(r_star));
+    }
+    if (f_lo > 1.0 + 1e-12 || f_hi < -1.0 - 1e-12) return std::nullopt;
+    const double beta_lo = std::acos(std::clamp(f_hi, -1.0, 1.0)), beta_hi = std::acos(std::clamp(f_lo, -1.0, 1.0));
+    const int s = leg.working_mode;
+    // q = psi + s beta (SPEC §1.4 working mode)
+    const double q_lo = psi_c + d_lo + (s > 0 ? beta_lo : -beta_hi) - 1e-12;
+    const double q_hi = psi_c + d_hi + (s > 0 ? beta_hi : -beta_lo) + 1e-12;
+    const double span = q_hi - q_lo;
+    if (span > 0.5 * pi) return out;
+    out.coarse = false;
+    out.lo = m_->elbow(i, q_lo);
+    out.hi = m_->elbow(i, q_hi);
+    out.mid = m_->elbow(i, 0.5 * (q_lo + q_hi));
+    out.sagitta = l1 * (1.0 - std::cos(0.5 * span)) * (1.0 + 1e-12) + tiny;
+    out.displacement = 2.0 * l1 * std::sin(0.25 * span) + tiny;
+    return out;
+  }
+
+  std::optional<BoxParts> enclose(const Box& box) const override {
+    const Point c = centre(box);
+    const double h = half_diagonal(box);
+    const auto cs = corners(box);
+    std::array<ElbowSet, 2> e;
+    for (int i = 0; i < 2; ++i) {
+      const auto s = elbow_set(i, box);
+      if (!s) return std::nullopt;
+      e[static_cast<std::size_t>(i)] = *s;
+    }
+    BoxParts out;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const Point a = m_->legs()[i].base;
+      const double l1 = m_->legs()[i].proximal;
+      std::vector<Point> v;
+      for (Point q : cs) {
+        if (e[i].coarse) {
+          v.push_back(a - q);
+        } else {
+          v.push_back(e[i].lo - q);
+          v.push_back(e[i].hi - q);
+        }
+      }
+      out.link_vectors[i] = hull_of(std::move(v), e[i].coarse ? l1 : e[i].sagitta);
+    }
+    auto push = [&out](Shape outer, std::optional<Shape> inner) {
+      Enclosure part;
+      part.outer = std::move(outer);
+      part.inner = std::move(inner);
+      out.parts.push_back(std::move(part));
+    };
+    for (const Part& part : model_.parts) {
+      const auto leg = static_cast<std::size_t>(std::max(part.leg, 0));
+      const ElbowSet& el = e[leg];
+      const Point a = m_->legs()[leg].base;
+      const double l1 = m_->legs()[leg].proximal;
+      if (part.kind == PartKind::platform_joint) {
+        push(Shape{{c}, part.radius + h}, witness({c}, part.radius - h));
+      } else if (part.kind == PartKind::link && part.proximal) {
+        if (el.coarse) push(Shape{{a}, l1 + part.radius}, std::nullopt);
+        else push(hull_of({a, el.lo, el.hi}, part.radius + el.sagitta), witness({a, el.mid}, part.radius - el.displacement));
+      } else if (part.kind == PartKind::link) {
+        std::vector<Point> v(cs.begin(), cs.end());
+        if (el.coarse) {
+          v.push_back(a);
+          push(hull_of(std::move(v), part.radius + l1), std::nullopt);
+        } else {
+          v.push_back(el.lo);
+          v.push_back(el.hi);
+          push(hull_of(std::move(v), part.radius + el.sagitta),
+               witness({el.mid, c}, part.radius - std::max(el.displacement, h)));
+        }
+      } else {
+        push(Shape{part.polygon, 0.0}, Shape{part.polygon, 0.0});
+      }
+    }
+    return out;
+  }
+
+  std::optional<std::array<Point, 2>> link_vectors_at(Point p) const override {
+    const auto e = elbows(p);
+    if (!e) return std::nullopt;
+    return std::array<Point, 2>{(*e)[0] - p, (*e)[1] - p};
+  }
+  std::array<std::string, 2> joint_links() const override { return {"distal1", "distal2"}; }
+  Shape fixed_part(std::size_t index) const override { return {model_.parts.at(index).polygon, 0.0}; }
+
+ private:
+  std::shared_ptr<const FiveBar> m_;
+};
+
+}  // namespace
+
+std::shared_ptr<const BodyRig> BodyRig::make(std::shared_ptr<const mechanisms::Mechanism> mechanism, BodyModel model) {
+  if (auto m = std::dynamic_pointer_cast<const Moma>(mechanism)) {
+    return std::make_shared<MomaRig>(std::move(m), std::move(model));
+  }
+  if (auto f = std::dynamic_pointer_cast<const FiveBar>(mechanism)) {
+    return std::make_shared<FiveBarRig>(std::move(f), std::move(model));
+  }
+  throw std::invalid_argument("bodies are supported for moma and five_bar mechanisms only");
+}
+
+}  // namespace pkmws::bodies
