@@ -1,0 +1,112 @@
+// Certified sub-level sets of a scalar field over an exact workspace:
+//
+//   S = { p ∈ W : F(p) <= level },   inner ⊆ S ⊆ outer,   area_lower <= area(S) <= area_upper,
+//
+// with the level curve F = level traced (points solved onto it to machine
+// precision). Two layers (docs/theory/level_sets.md):
+//  (a) the cell quadtree of cell_region.hpp with an interval test of F
+//      (`certify_cells`): always valid, bound width ~ curve length x cell size;
+//  (b) `sublevel_set`: the same quadtree, then in every undecided cell where the
+//      interval gradient proves the level curve is the graph of a function
+//      (|∂F/∂v| > 0 over the cell), the curve is sampled by certified root
+//      brackets and the area between curve and chords is bounded by the interval
+//      Hessian (|g''| bound) or, near the cell's edges, by the Lipschitz constant
+//      |∂F/∂u| / |∂F/∂v|. Cells where this fails are split; at the depth limit
+//      they stay undecided (in outer, not in inner).
+//
+// Lengths in the field's unit, areas in unit².
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "pkmws/certified/cell_region.hpp"
+#include "pkmws/certified/interval.hpp"
+#include "pkmws/geometry/region.hpp"
+#include "pkmws/geometry/types.hpp"
+
+namespace pkmws::certified {
+
+/// A scalar field F over the plane (a criterion or a smooth surrogate of it).
+/// All methods are const and thread-safe.
+class ScalarField {
+ public:
+  virtual ~ScalarField() = default;
+  /// F at a point (NaN outside the domain where it is defined).
+  virtual double value(geometry::Point p) const = 0;
+  /// F with gradient and Hessian at a point (double arithmetic).
+  virtual Jet<double> jet(geometry::Point p) const = 0;
+  /// F with its gradient at a point, and enclosed over a box.
+  virtual Grad<double> grad(geometry::Point p) const = 0;
+  virtual Grad<Interval> grad(const geometry::Box& box) const = 0;
+  /// Encloses F over box ∩ domain (also for degenerate boxes: points, edges).
+  virtual Interval enclose(const geometry::Box& box) const = 0;
+  /// Encloses F and its derivatives over the box; meaningful only for boxes
+  /// the domain test calls `inside` (F is C² there).
+  virtual Jet<Interval> jet(const geometry::Box& box) const = 0;
+  /// Conservative position of the box with respect to the open set where F is
+  /// C² (and defined): `inside` only if the whole box is in it.
+  virtual CellState domain(const geometry::Box& box) const = 0;
+};
+
+struct LevelSetOptions {
+  /// Target bound width relative to the area: area_upper - area_lower <= tol * area (aimed at, reported).
+  double relative_tolerance = 1e-6;
+  /// Quadtree before tracing: base cells per side and levels of the cover.
+  int base = 16;
+  int cover_depth = 5;
+  /// Further splits of a cell that cannot be traced (depth below the cover's leaves).
+  int refine_depth = 8;
+  /// 0: every hardware thread, 1: serial. Results do not depend on it.
+  int threads = 0;
+  /// Build the inner/outer regions (exact polygons; costly for plots only).
+  bool build_regions = true;
+  /// Trace curves (layer b); false gives the pure cell baseline (layer a).
+  bool trace = true;
+};
+
+/// A piece of the traced level curve: points on F = level (to a few ulps).
+using CurvePiece = std::vector<geometry::Point>;
+
+struct LevelSetResult {
+  /// inner/outer (when built) and the certified area bounds. Without regions,
+  /// inner/outer are empty and area_lower/area_upper still hold.
+  CertifiedRegion region;
+  std::vector<CurvePiece> curves;
+  std::uint64_t traced_cells = 0;      // cells where the curve was traced
+  std::uint64_t undecided_cells = 0;   // cells left undecided at the depth limit
+  std::uint64_t curve_points = 0;      // certified root brackets computed
+  std::uint64_t cell_tests = 0;
+  double undecided_area = 0.0;         // part of the width from undecided cells
+  double traced_width = 0.0;           // part of the width from traced cells
+  double tolerance_per_length = 0.0;   // τ used (area per unit curve length)
+};
+
+/// Conservative classification of a box against the workspace W (inside only
+/// if box ⊆ W); used to avoid exact region operations for cells inside W.
+using WithinTest = CellTest;
+
+/// S = { p ∈ within : F(p) <= level } as a certified region with traced curves.
+/// `within_test` classifies boxes against `within` (may always answer
+/// undecided: then every cell goes through exact region operations).
+LevelSetResult sublevel_set(const ScalarField& field, double level, const geometry::Region& within,
+                            const WithinTest& within_test, const LevelSetOptions& options);
+
+/// Layer (a) only: certify() with the interval test of F (quadtree depth
+/// `max_depth` below `base`).
+CertifiedRegion certify_cells(const ScalarField& field, double level, const geometry::Region& within, int base,
+                              int max_depth, int threads = 0);
+
+/// Bands between consecutive levels: band k = { l_{k-1} < F <= l_k } (band 0:
+/// F <= l_0), as enclosures from the sub-level sets (a − b algebra), with the
+/// sub-level results for the curves.
+struct Band {
+  double lower_level = 0.0;   // -inf for band 0
+  double upper_level = 0.0;
+  double area_lower = 0.0;
+  double area_upper = 0.0;
+};
+std::vector<Band> bands_from_sublevels(const std::vector<double>& levels, const std::vector<LevelSetResult>& sublevels);
+
+}  // namespace pkmws::certified

@@ -1,0 +1,83 @@
+// Transmission criteria as scalar fields over the plane of the platform point
+// P for one working mode (seed 004; SPEC §1.4, §1.5), in the form the
+// certified level-set module needs: each criterion c has a smooth surrogate s
+// with the same sub-level sets, c(p) <= t  <=>  s(p) <= level(t), evaluable at
+// points (double), over boxes (intervals) and with derivatives (jets).
+//
+//  * five-bar pressure angle α = acos|sin ε| (seed 004): s = cos²ε,
+//    level(α_max) = sin²α_max; reaction R = f / |sin ε| (no moment reaches C):
+//    the same s with level(R_max) = 1 - (f / R_max)².
+//  * planar 3-DOF (3-RPR) reaction of leg i: R_i,max = f |v_P,i| + |m| |ω_i|
+//    (SPEC §1.5), s = R_i itself (N); pressure angle of leg i:
+//    cos α_i = 1 / |v_B_i| (seed 004: r_i . v_i = 1), s = |v_B_i|², level = 1 / cos²α.
+//
+// Units: lengths in the mechanism's unit, angles in degrees at this interface,
+// forces in N.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pkmws/certified/level_set.hpp"
+#include "pkmws/io/mechanism_file.hpp"
+#include "pkmws/mechanisms/five_bar.hpp"
+#include "pkmws/mechanisms/three_rpr.hpp"
+
+namespace pkmws::criteria {
+
+/// A criterion over the plane of P, with its surrogate field for level sets.
+struct CriterionField {
+  std::string name;   // "pressure_angle", "reaction"
+  std::string unit;   // "deg", "N"
+  /// Identifies the surrogate: two criteria with the same key and levels
+  /// l1, l2 have the intersection of their sub-level sets at min(l1, l2).
+  std::string key;
+  std::shared_ptr<const certified::ScalarField> surrogate;
+  /// Criterion threshold -> surrogate level (non-decreasing).
+  std::function<double(double)> level;
+  /// The criterion itself at a point (NaN where undefined, +inf at a singularity).
+  std::function<double(geometry::Point)> value;
+  /// Conservative test box ⊆ workspace (for cells that need no exact clipping).
+  certified::WithinTest within_test;
+};
+
+/// Five-bar (any link lengths, cranks without limits): α in degrees.
+CriterionField five_bar_pressure_angle(const mechanisms::FiveBar& mechanism);
+/// Five-bar reaction f / |sin ε| (N) for a force of norm `force_N`.
+CriterionField five_bar_reaction(const mechanisms::FiveBar& mechanism, double force_N);
+/// 3-RPR at its file orientation: R_i,max of leg `leg` (0-based), N.
+CriterionField three_rpr_reaction(const mechanisms::ThreeRpr& mechanism, const mechanisms::Load& load, int leg);
+/// 3-RPR pressure angle α_i of leg `leg` (0-based), degrees.
+CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, int leg);
+
+/// The fields of a criterion for a mechanism file, one per limited leg (their
+/// sub-level sets are intersected). `name`: "pressure_angle" or "reaction".
+/// Throws io::InputError when the mechanism does not support it.
+std::vector<CriterionField> fields_for(const io::MechanismFile& file, const std::string& name);
+
+/// One limit of the file's `criteria`: a criterion and its threshold.
+struct Limit {
+  std::string name;
+  double threshold = 0.0;
+};
+/// The limits in the file (max_pressure_angle_deg, max_reaction_N; throws
+/// io::InputError for max_velocity_ratio where unsupported).
+std::vector<Limit> file_limits(const io::MechanismFile& file);
+
+/// Result of a criteria-limited workspace: W ∩ ⋂ {c_k <= t_k}.
+struct LimitedWorkspace {
+  certified::CertifiedRegion region;     // inner/outer built when asked
+  std::vector<certified::CurvePiece> curves;
+  double time_ms = 0.0;
+};
+/// The workspace of `file` limited by `limits` (same surrogate: the stricter
+/// level; several surrogates: intersection of the enclosures, regions built).
+LimitedWorkspace limited_workspace(const io::MechanismFile& file, const std::vector<Limit>& limits,
+                                   const certified::LevelSetOptions& options);
+
+/// The exact workspace the criteria are restricted to (Mechanism::workspace()).
+geometry::Region criteria_domain(const io::MechanismFile& file);
+
+}  // namespace pkmws::criteria

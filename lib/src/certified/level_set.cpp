@@ -1,0 +1,648 @@
+// Certified sub-level sets with traced level curves (see level_set.hpp and
+// docs/theory/level_sets.md for the bounds and why they hold).
+#include "pkmws/certified/level_set.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "detail/parallel.hpp"
+#include "pkmws/geometry/primitives.hpp"
+
+namespace pkmws::certified {
+
+using geometry::Box;
+using geometry::Point;
+using geometry::Region;
+
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+Box make_box(double x0, double y0, double x1, double y1) {
+  Box b;
+  b.min = {x0, y0};
+  b.max = {x1, y1};
+  return b;
+}
+
+double box_area(const Box& b) { return b.width() * b.height(); }
+
+// Value enclosure of F over a box: natural form, intersected with the centred
+// (mean-value) form when the box lies in F's smooth domain.
+Interval enclose_value(const ScalarField& f, const Box& box, CellState dom, double level) {
+  Interval v = f.enclose(box);
+  if (v.hi <= level || v.lo > level) return v;  // decided by the natural form
+  if (dom == CellState::inside && box.width() > 0.0) {
+    const Grad<Interval> j = f.grad(box);
+    if (j.dx.finite() && j.dy.finite()) {
+      const Point c{0.5 * (box.min.x + box.max.x), 0.5 * (box.min.y + box.max.y)};
+      const Interval fc = f.enclose(make_box(c.x, c.y, c.x, c.y));
+      const Interval dxr = hull(Interval(box.min.x) - Interval(c.x), Interval(box.max.x) - Interval(c.x));
+      const Interval dyr = hull(Interval(box.min.y) - Interval(c.y), Interval(box.max.y) - Interval(c.y));
+      const Interval cf = fc + j.dx * dxr + j.dy * dyr;
+      const Interval both = intersect(v, cf);
+      v = both.lo <= both.hi ? both : cf;
+    }
+  }
+  return v;
+}
+
+CellState classify(const ScalarField& f, double level, const Box& box) {
+  const CellState dom = f.domain(box);
+  if (dom == CellState::outside) return CellState::outside;
+  const Interval v = enclose_value(f, box, dom, level);
+  if (v.hi <= level) return CellState::inside;
+  if (v.lo > level) return CellState::outside;
+  return CellState::undecided;
+}
+
+// ---------------------------------------------------------------------------
+// Tracing one cell B = [u0, u1] x [v0, v1]. Coordinates (u, v): (x, y) when the
+// curve is a graph over x, (y, x) otherwise. G(u, v) = sgn (F - level) is
+// increasing in v on the extended box B' = [u0, u1] x [v0 - E, v1 + E], with
+// |dg/du| <= L there and L (u1 - u0) <= E: if the curve meets B at all, it is
+// the graph of g over the whole [u0, u1] inside B' (docs/theory/level_sets.md).
+// h(u) = clamp(g(u), v0, v1) is the boundary of {G <= 0} on each vertical
+// segment of B.
+
+struct PLPoint {
+  double u, w;  // a vertex of a piecewise-linear envelope w(u)
+};
+
+struct CellTrace {
+  bool ok = false;
+  bool swapped = false;      // u = y, v = x
+  int sgn = 1;               // sub-level side: +1 below the curve (v <= h), -1 above
+  double lower = 0.0;        // bounds of area(S ∩ cell)
+  double upper = 0.0;
+  std::vector<PLPoint> env_lo, env_hi;  // envelopes of h(u): env_lo <= h <= env_hi
+  CurvePiece curve;
+  std::uint64_t points = 0;
+};
+
+class Tracer {
+ public:
+  Tracer(const ScalarField& f, double level, const Box& cell, bool swapped, int sgn, double lipschitz, double extent,
+         double tau, Interval curvature)
+      : f_(f), level_(level), swapped_(swapped), sgn_(sgn), L_(lipschitz), tau_(tau), g2_cell_(curvature) {
+    u0_ = swapped ? cell.min.y : cell.min.x;
+    u1_ = swapped ? cell.max.y : cell.max.x;
+    v0_ = swapped ? cell.min.x : cell.min.y;
+    v1_ = swapped ? cell.max.x : cell.max.y;
+    w0_ = v0_ - extent;
+    w1_ = v1_ + extent;
+    scale_ = std::max({std::abs(u0_), std::abs(u1_), std::abs(w0_), std::abs(w1_), w1_ - w0_});
+  }
+
+  bool run(CellTrace& out);
+
+ private:
+  // A sample of g at u: state 0: g ∈ [lo, hi] ⊆ [w0, w1]; +1: g above w1
+  // (G(u, w1) < 0); -1: below w0 (G(u, w0) > 0).
+  struct Sample {
+    double lo, hi;
+    int state;
+  };
+  Point xy(double u, double v) const { return swapped_ ? Point{v, u} : Point{u, v}; }
+  Box box_uv(double ua, double ub, double va, double vb) const {
+    return swapped_ ? make_box(va, ua, vb, ub) : make_box(ua, va, ub, vb);
+  }
+  int sign_at(double u, double v) const {
+    const Point p = xy(u, v);
+    const Interval val = f_.enclose(make_box(p.x, p.y, p.x, p.y)) - Interval(level_);
+    const Interval g = sgn_ > 0 ? val : -val;
+    if (g.lo > 0.0) return 1;
+    if (g.hi < 0.0) return -1;
+    return 0;
+  }
+  Sample solve(double u, double guess);
+  void integrate(double a, double b, const Sample& sa, const Sample& sb, int depth);
+  // Adds clamp(w(u), v0, v1) for the linear w from (a, wa) to (b, wb).
+  void add_clamped(std::vector<PLPoint>& env, double a, double wa, double b, double wb) const;
+  void add_constant(double a, double b, double w) {
+    env_lo_.push_back({a, w}); env_lo_.push_back({b, w});
+    env_hi_.push_back({a, w}); env_hi_.push_back({b, w});
+  }
+  void record(double u, const Sample& s) {
+    if (s.state == 0) {
+      const double v = 0.5 * (s.lo + s.hi);
+      if (v >= v0_ && v <= v1_) curve_.push_back(xy(u, v));
+    }
+  }
+
+  const ScalarField& f_;
+  double level_;
+  bool swapped_;
+  int sgn_;
+  double L_;
+  double tau_;
+  Interval g2_cell_;  // g'' over B' (may be infinite)
+  double u0_ = 0, u1_ = 0, v0_ = 0, v1_ = 0, w0_ = 0, w1_ = 0, scale_ = 1;
+  bool failed_ = false;
+  std::uint64_t points_ = 0;
+  std::vector<PLPoint> env_lo_, env_hi_;
+  CurvePiece curve_;
+  static constexpr std::uint64_t max_points = 4096;
+  static constexpr int max_depth = 30;
+};
+
+Tracer::Sample Tracer::solve(double u, double guess) {
+  ++points_;
+  // Safeguarded Newton in double arithmetic ...
+  double lo = w0_, hi = w1_;
+  double v = std::clamp(guess, w0_, w1_);
+  bool converged = false;
+  for (int it = 0; it < 50; ++it) {
+    const Grad<double> j = f_.grad(xy(u, v));
+    const double g = sgn_ * (j.v - level_);
+    const double gv = sgn_ * (swapped_ ? j.dx : j.dy);
+    if (!std::isfinite(g)) break;
+    if (g < 0.0) lo = std::max(lo, v); else hi = std::min(hi, v);
+    double next = (gv > 0.0 && std::isfinite(gv)) ? v - g / gv : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    const bool done = std::abs(next - v) <= 2e-16 * scale_ || hi - lo <= 2e-16 * scale_;
+    v = next;
+    if (done) { converged = true; break; }
+  }
+  // ... then a certified bracket: G(blo) < 0 or blo = w0, G(bhi) > 0 or bhi = w1
+  // (G increases in v on B', so the root is between).
+  double blo = w0_, bhi = w1_;
+  bool have_lo = false, have_hi = false;
+  if (converged && v > w0_ && v < w1_) {
+    double delta = 2e-16 * scale_;
+    for (int k = 0; k < 40 && !(have_lo && have_hi); ++k) {
+      const double a = std::max(w0_, v - delta), c = std::min(w1_, v + delta);
+      if (!have_lo && a > w0_ && sign_at(u, a) < 0) { blo = a; have_lo = true; }
+      if (!have_hi && c < w1_ && sign_at(u, c) > 0) { bhi = c; have_hi = true; }
+      if (a <= w0_ || c >= w1_) break;
+      delta *= 4.0;
+    }
+    if (have_lo && have_hi) return {blo, bhi, 0};
+  }
+  // Near or beyond B''s edges: decide with the ends.
+  const int s0 = sign_at(u, w0_);
+  if (s0 > 0) return {w0_, w0_, -1};
+  const int s1 = sign_at(u, w1_);
+  if (s1 < 0) return {w1_, w1_, 1};
+  return {have_lo ? blo : w0_, have_hi ? bhi : w1_, 0};
+}
+
+void Tracer::add_clamped(std::vector<PLPoint>& env, double a, double wa, double b, double wb) const {
+  env.push_back({a, std::clamp(wa, v0_, v1_)});
+  // Crossings of the line with v0 and v1 inside (a, b), in increasing u.
+  std::array<double, 2> cuts{};
+  int n = 0;
+  if (wa != wb) {
+    for (double level : {v0_, v1_}) {
+      const double t = (level - wa) / (wb - wa);
+      if (t > 0.0 && t < 1.0) cuts[static_cast<std::size_t>(n++)] = a + t * (b - a);
+    }
+  }
+  if (n == 2 && cuts[0] > cuts[1]) std::swap(cuts[0], cuts[1]);
+  for (int k = 0; k < n; ++k) {
+    const double u = cuts[static_cast<std::size_t>(k)];
+    const double w = wa + (wb - wa) * ((u - a) / (b - a));
+    env.push_back({u, std::clamp(w, v0_, v1_)});
+  }
+  env.push_back({b, std::clamp(wb, v0_, v1_)});
+}
+
+void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, int depth) {
+  if (failed_) return;
+  if (points_ > max_points) { failed_ = true; return; }
+  const double delta = b - a;
+  // A sample beyond B': the curve does not meet B over [a, b] (else it would
+  // be in B' over all of [u0, u1]), so h is constant on that side.
+  if (sa.state != 0 || sb.state != 0) {
+    if (sa.state * sb.state < 0) { failed_ = true; return; }
+    add_constant(a, b, (sa.state != 0 ? sa.state : sb.state) > 0 ? v1_ : v0_);
+    return;
+  }
+  // Tent of the curve over [a, b] (if it is in B' there): within L of both ends.
+  const double tent_lo = 0.5 * (sa.lo + sb.lo) - 0.5 * L_ * delta;
+  const double tent_hi = 0.5 * (sa.hi + sb.hi) + 0.5 * L_ * delta;
+  if (tent_lo > v1_) { add_constant(a, b, v1_); return; }  // never reaches B: h = v1
+  if (tent_hi < v0_) { add_constant(a, b, v0_); return; }  // h = v0
+  auto split = [&]() {
+    const double m = 0.5 * (a + b);
+    const Sample sm = solve(m, 0.25 * (sa.lo + sa.hi + sb.lo + sb.hi));
+    record(m, sm);
+    integrate(a, m, sa, sm, depth + 1);
+    integrate(m, b, sm, sb, depth + 1);
+  };
+  const double box_lo = std::min(sa.lo, sb.lo) - 0.5 * L_ * delta;
+  const double box_hi = std::max(sa.hi, sb.hi) + 0.5 * L_ * delta;
+  if (box_lo >= w0_ && box_hi <= w1_) {
+    // g is C² on [a, b] with its graph in S = [a, b] x [box_lo, box_hi] ⊆ B'.
+    // chord error: g - chord = -g''(ξ) (u - a)(b - u) / 2, |(u - a)(b - u)| / 2 <= Δ² / 8.
+    const double q = delta * delta / 8.0;
+    auto accept = [&](const Interval& g2, bool force) {
+      if (!g2.finite()) return false;
+      const double e_lo = std::max(0.0, g2.hi) * q * (1.0 + 1e-12);
+      const double e_hi = std::max(0.0, -g2.lo) * q * (1.0 + 1e-12);
+      const double width = delta * (0.5 * (sa.hi - sa.lo + sb.hi - sb.lo) + e_lo + e_hi);
+      if (!(width <= tau_ * delta || force)) return false;
+      add_clamped(env_lo_, a, sa.lo - e_lo, b, sb.lo - e_lo);
+      add_clamped(env_hi_, a, sa.hi + e_hi, b, sb.hi + e_hi);
+      return true;
+    };
+    // g'' over B' (once per cell), then over S (tighter, one jet).
+    if (g2_cell_.finite() && accept(g2_cell_, false)) return;
+    const Jet<Interval> j = f_.jet(box_uv(a, b, box_lo, box_hi));
+    const Interval fu = swapped_ ? j.dy : j.dx, fv = swapped_ ? j.dx : j.dy;
+    const Interval fuu = swapped_ ? j.dyy : j.dxx, fvv = swapped_ ? j.dxx : j.dyy, fuv = j.dxy;
+    if (!fv.contains_zero()) {
+      // g' = -F_u / F_v, g'' = -(F_uu + 2 F_uv g' + F_vv g'²) / F_v.
+      const Interval g1 = -(fu / fv);
+      const Interval g2 = -((fuu + Interval(2.0) * fuv * g1 + fvv * sqr(g1)) / fv);
+      if (accept(g2, depth >= max_depth)) return;
+      if (g2.finite()) { split(); return; }
+    }
+  }
+  if (depth < max_depth && delta > 1e-14 * scale_) {
+    split();
+    return;
+  }
+  // Last resort: h is L-Lipschitz; tents from the clamped samples.
+  const double la = std::clamp(sa.lo, v0_, v1_), lb = std::clamp(sb.lo, v0_, v1_);
+  const double ha = std::clamp(sa.hi, v0_, v1_), hb = std::clamp(sb.hi, v0_, v1_);
+  const double peak_lo = std::clamp(0.5 * (a + b) + (lb - la) / (2.0 * L_), a, b);
+  const double peak_hi = std::clamp(0.5 * (a + b) + (hb - ha) / (2.0 * L_), a, b);
+  auto lower_at = [&](double u) { return std::max({v0_, la - L_ * (u - a), lb - L_ * (b - u)}); };
+  auto upper_at = [&](double u) { return std::min({v1_, ha + L_ * (u - a), hb + L_ * (b - u)}); };
+  // Piecewise linear with breaks at the peak and the clamps; sampling at the
+  // peak only gives a polyline below (lower) / above (upper)? No: use exact
+  // breakpoints. The lower tent max(.) is convex, so its chord over
+  // [a, peak] and [peak, b] lies above it: take the constant minimum instead.
+  const double lmin = std::min({lower_at(a), lower_at(b), lower_at(peak_lo)});
+  const double hmax = std::max({upper_at(a), upper_at(b), upper_at(peak_hi)});
+  env_lo_.push_back({a, lmin}); env_lo_.push_back({b, lmin});
+  env_hi_.push_back({a, hmax}); env_hi_.push_back({b, hmax});
+}
+
+bool Tracer::run(CellTrace& out) {
+  const int n0 = 2;
+  std::array<Sample, n0 + 1> h{};
+  std::array<double, n0 + 1> us{};
+  double guess = 0.5 * (v0_ + v1_);
+  for (int k = 0; k <= n0; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    us[i] = k == n0 ? u1_ : u0_ + (u1_ - u0_) * k / n0;
+    h[i] = solve(us[i], guess);
+    if (h[i].state == 0) guess = 0.5 * (h[i].lo + h[i].hi);
+    record(us[i], h[i]);
+  }
+  for (int k = 0; k < n0 && !failed_; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    integrate(us[i], us[i + 1], h[i], h[i + 1], 0);
+  }
+  if (failed_) return false;
+  // ∫(env - v0) over [u0, u1] (relative to v0: no cancellation).
+  auto integral = [&](const std::vector<PLPoint>& env) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k + 1 < env.size(); ++k) {
+      const double du = env[k + 1].u - env[k].u;
+      if (du > 0.0) sum += 0.5 * du * ((env[k].w - v0_) + (env[k + 1].w - v0_));
+    }
+    return sum;
+  };
+  const double span = u1_ - u0_;
+  const double ilo = integral(env_lo_), ihi = integral(env_hi_);
+  const double cell = span * (v1_ - v0_);
+  double lower, upper;
+  if (sgn_ > 0) {  // S below the curve: area ∫(h - v0)
+    lower = ilo;
+    upper = ihi;
+  } else {  // S above: ∫(v1 - h)
+    lower = cell - ihi;
+    upper = cell - ilo;
+  }
+  // Rounding of the sums (terms of one sign, ~n eps relative) and of the vertices.
+  const double margin = 16 * std::numeric_limits<double>::epsilon() * cell * static_cast<double>(env_lo_.size() + 8);
+  out.lower = std::max(0.0, lower - margin);
+  out.upper = std::min(cell, upper + margin);
+  out.ok = true;
+  out.swapped = swapped_;
+  out.sgn = sgn_;
+  out.points = points_;
+  out.env_lo = std::move(env_lo_);
+  out.env_hi = std::move(env_hi_);
+  std::sort(curve_.begin(), curve_.end(), [&](const Point& p, const Point& q) {
+    return swapped_ ? p.y < q.y : p.x < q.x;
+  });
+  out.curve = std::move(curve_);
+  return true;
+}
+
+CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double tau) {
+  CellTrace t;
+  const Grad<Interval> j = f.grad(cell);
+  if (!j.dx.finite() || !j.dy.finite()) return t;
+  const bool y_ok = !j.dy.contains_zero(), x_ok = !j.dx.contains_zero();
+  bool swapped;
+  if (y_ok && (!x_ok || j.dy.mig() >= j.dx.mig())) {
+    swapped = false;
+  } else if (x_ok) {
+    swapped = true;
+  } else {
+    return t;
+  }
+  const double du = swapped ? cell.height() : cell.width();
+  auto slope = [&](const Grad<Interval>& g) {
+    const Interval fv = swapped ? g.dx : g.dy, fu = swapped ? g.dy : g.dx;
+    if (fv.contains_zero() || !fu.finite()) return inf;
+    return fu.mag() / fv.mig() * (1.0 + 1e-12);
+  };
+  // Extent E of B' with L(B') du <= E: two tries.
+  double lipschitz = slope(j);
+  double extent = 1.5 * lipschitz * du + 1e-12 * du;
+  bool ok = false;
+  int sgn = 1;
+  for (int attempt = 0; attempt < 4 && std::isfinite(extent); ++attempt) {
+    const Box ext = swapped ? make_box(cell.min.x - extent, cell.min.y, cell.max.x + extent, cell.max.y)
+                            : make_box(cell.min.x, cell.min.y - extent, cell.max.x, cell.max.y + extent);
+    if (f.domain(ext) != CellState::inside) return t;
+    const Grad<Interval> je = f.grad(ext);
+    const double le = slope(je);
+    if (!std::isfinite(le)) return t;
+    if (le * du <= extent) {
+      lipschitz = le;
+      sgn = (swapped ? je.dx.lo : je.dy.lo) > 0.0 ? 1 : -1;
+      ok = true;
+      break;
+    }
+    extent = 1.5 * le * du + 1e-12 * du;
+  }
+  if (!ok) return t;
+  const Interval g2 = Interval::whole();  // no cell-wide curvature bound: per sub-interval jets are tighter
+  Tracer tracer(f, level, cell, swapped, sgn, lipschitz, extent, tau, g2);
+  tracer.run(t);
+  return t;
+}
+
+// The part of the cell between an envelope and the cell's base edge (v0 when
+// S lies below the curve, v1 when above), as simple polygons: one per run
+// where the envelope is off the base edge.
+void envelope_polygons(const CellTrace& t, const Box& cell, bool use_hi, std::vector<Region>& out) {
+  const auto& env = use_hi ? t.env_hi : t.env_lo;
+  const double v0 = t.swapped ? cell.min.x : cell.min.y, v1 = t.swapped ? cell.max.x : cell.max.y;
+  const double base = t.sgn > 0 ? v0 : v1;
+  auto xy = [&](double u, double v) { return t.swapped ? Point{v, u} : Point{u, v}; };
+  std::vector<Point> run;
+  auto emit = [&](double u_end) {
+    if (run.empty()) return;
+    const Point end = xy(u_end, base);
+    if (run.back() != end) run.push_back(end);
+    if (run.size() >= 3) {
+      try {
+        Region r = geometry::polygon(run);
+        if (!r.empty()) out.push_back(std::move(r));
+      } catch (const std::exception&) {
+        // Degenerate (zero-area) run: nothing to add.
+      }
+    }
+    run.clear();
+  };
+  for (std::size_t k = 0; k < env.size(); ++k) {
+    const double w = std::clamp(env[k].w, v0, v1);
+    const Point p = xy(env[k].u, w);
+    if (w == base) {
+      emit(env[k].u);
+      continue;
+    }
+    if (run.empty()) run.push_back(xy(env[k].u, base));
+    if (run.back() != p) run.push_back(p);
+  }
+  if (!env.empty()) emit(env.back().u);
+}
+
+// Splits a box that is in S wherever it is in W: parts inside W count fully,
+// parts across W's boundary at the depth limit stay undecided.
+void split_within(const WithinTest& within_test, const Box& b, int depth, std::vector<Box>& inside,
+                  std::vector<Box>& undecided, double& inside_area, double& undecided_area) {
+  const CellState c = within_test(b);
+  if (c == CellState::outside) return;
+  if (c == CellState::inside) {
+    inside.push_back(b);
+    inside_area += box_area(b);
+    return;
+  }
+  if (depth == 0) {
+    undecided.push_back(b);
+    undecided_area += box_area(b);
+    return;
+  }
+  const double xm = 0.5 * (b.min.x + b.max.x), ym = 0.5 * (b.min.y + b.max.y);
+  split_within(within_test, make_box(b.min.x, b.min.y, xm, ym), depth - 1, inside, undecided, inside_area, undecided_area);
+  split_within(within_test, make_box(xm, b.min.y, b.max.x, ym), depth - 1, inside, undecided, inside_area, undecided_area);
+  split_within(within_test, make_box(b.min.x, ym, xm, b.max.y), depth - 1, inside, undecided, inside_area, undecided_area);
+  split_within(within_test, make_box(xm, ym, b.max.x, b.max.y), depth - 1, inside, undecided, inside_area, undecided_area);
+}
+
+struct LeafResult {
+  std::vector<Box> inside;      // certified in S (by value)
+  std::vector<Box> undecided;   // at the depth limit
+  std::vector<std::pair<Box, CellTrace>> traced;
+  std::uint64_t tests = 0;
+};
+
+void refine(const ScalarField& f, double level, const WithinTest& within_test, const Box& cell, int depth,
+            int max_depth, double tau, bool trace, LeafResult& r) {
+  ++r.tests;
+  const CellState c = classify(f, level, cell);
+  if (c == CellState::inside) { r.inside.push_back(cell); return; }
+  if (c == CellState::outside) return;
+  if (trace && f.domain(cell) == CellState::inside && within_test(cell) == CellState::inside) {
+    CellTrace t = try_trace(f, level, cell, tau);
+    if (t.ok) {
+      r.traced.emplace_back(cell, std::move(t));
+      return;
+    }
+  }
+  if (depth >= max_depth) { r.undecided.push_back(cell); return; }
+  const double xm = 0.5 * (cell.min.x + cell.max.x), ym = 0.5 * (cell.min.y + cell.max.y);
+  refine(f, level, within_test, make_box(cell.min.x, cell.min.y, xm, ym), depth + 1, max_depth, tau, trace, r);
+  refine(f, level, within_test, make_box(xm, cell.min.y, cell.max.x, ym), depth + 1, max_depth, tau, trace, r);
+  refine(f, level, within_test, make_box(cell.min.x, ym, xm, cell.max.y), depth + 1, max_depth, tau, trace, r);
+  refine(f, level, within_test, make_box(xm, ym, cell.max.x, cell.max.y), depth + 1, max_depth, tau, trace, r);
+}
+
+// Splits merged runs of the cover back into its leaf cells.
+std::vector<Box> leaf_cells(const std::vector<Box>& runs, const Box& window, int base, int depth) {
+  const double n = static_cast<double>(base) * std::ldexp(1.0, depth);
+  const double cw = window.width() / n;
+  std::vector<Box> out;
+  for (const Box& r : runs) {
+    const auto count = static_cast<long>(std::llround(r.width() / cw));
+    if (count <= 1) { out.push_back(r); continue; }
+    const auto i0 = std::llround((r.min.x - window.min.x) / cw);
+    for (long k = 0; k < count; ++k) {
+      Box b = r;
+      b.min.x = window.min.x + window.width() * (static_cast<double>(i0 + k) / n);
+      b.max.x = window.min.x + window.width() * (static_cast<double>(i0 + k + 1) / n);
+      if (k == 0) b.min.x = r.min.x;
+      if (k == count - 1) b.max.x = r.max.x;
+      out.push_back(b);
+    }
+  }
+  return out;
+}
+
+LevelSetResult run_once(const ScalarField& field, double level, const Region& within, const WithinTest& within_test,
+                        const LevelSetOptions& options, double tau_override) {
+  LevelSetResult result;
+  CellOptions co;
+  co.window = within.bbox();
+  co.base = options.base;
+  co.max_depth = options.cover_depth;
+  co.threads = options.threads;
+  const CellCover cover_result = certified::cover([&](const Box& b) { return classify(field, level, b); }, co);
+  result.cell_tests = cover_result.tests;
+  const std::vector<Box> leaves = leaf_cells(cover_result.undecided, co.window, co.base, co.max_depth);
+
+  // τ: the allowed width per unit length of curve, from the cover's estimate
+  // of the area and of the curve length (undecided leaves x leaf size).
+  double tau = tau_override;
+  if (!(tau > 0.0)) {
+    const double leaf = co.window.width() / (co.base * std::ldexp(1.0, co.max_depth));
+    const double length = std::max(1.0, static_cast<double>(leaves.size())) * leaf;
+    const double area_est = std::max(cover_result.area_inside + 0.5 * cover_result.area_undecided, 1e-3 * box_area(co.window) * 1e-3);
+    tau = options.relative_tolerance * area_est / length;
+  }
+  result.tolerance_per_length = tau;
+
+  std::vector<LeafResult> per_leaf(leaves.size());
+  detail::ParallelPolicy policy;
+  policy.threads = options.threads;
+  policy.serial_threshold = 8;
+  detail::for_each_block(policy, leaves.size(), leaves.size() * 64, [&](std::size_t k) {
+    refine(field, level, within_test, leaves[k], 0, options.refine_depth, tau, options.trace, per_leaf[k]);
+  });
+
+  double in_lower = 0.0, traced_lower = 0.0, traced_upper = 0.0, undecided_in = 0.0;
+  std::vector<Box> straddle_inside;
+  std::vector<Box> inside_all = cover_result.inside;
+  std::vector<Box> undecided_all;
+  for (const Box& b : cover_result.inside) {
+    if (within_test(b) == CellState::inside) in_lower += box_area(b);
+    else straddle_inside.push_back(b);
+  }
+  std::vector<Region> lo_polys, hi_polys;
+  const double small_cell = co.window.width() / (co.base * std::ldexp(1.0, co.max_depth + 4));
+  // Refined cells across W's boundary are small (near the points where the
+  // level curve meets W's boundary): counted as undecided (lower 0, upper the
+  // box's area) instead of exact clipping, which would cost more than it gains.
+  for (std::size_t k = 0; k < per_leaf.size(); ++k) {
+    LeafResult& r = per_leaf[k];
+    result.cell_tests += r.tests;
+    for (const Box& b : r.inside) {
+      if (within_test(b) == CellState::inside) {
+        in_lower += box_area(b);
+        inside_all.push_back(b);
+      } else if (b.width() >= small_cell) {
+        inside_all.push_back(b);
+        straddle_inside.push_back(b);
+      } else {
+        // Small and across W's boundary: split against W alone (cheap test).
+        split_within(within_test, b, 8, inside_all, undecided_all, in_lower, undecided_in);
+      }
+    }
+    for (const Box& b : r.undecided) {
+      undecided_all.push_back(b);
+      ++result.undecided_cells;
+      undecided_in += box_area(b);
+    }
+    for (auto& [cell, t] : r.traced) {
+      ++result.traced_cells;
+      result.curve_points += t.points;
+      traced_lower += t.lower;
+      traced_upper += t.upper;
+      if (options.build_regions) {
+        envelope_polygons(t, cell, t.sgn < 0, lo_polys);  // inner: below env_lo, or above env_hi
+        envelope_polygons(t, cell, t.sgn > 0, hi_polys);  // outer
+      }
+      if (t.curve.size() >= 2) result.curves.push_back(std::move(t.curve));
+    }
+  }
+  // Cells across W's boundary: exact region operations.
+  double straddle_lower = 0.0;
+  const double straddle_und = 0.0;
+  if (!straddle_inside.empty()) straddle_lower = within.intersect(boxes_region(straddle_inside)).area();
+  // Sums of positive terms: relative rounding ~ n eps; a margin of 1e-13 of the total.
+  const double lower = in_lower + straddle_lower + traced_lower;
+  const double upper = in_lower + straddle_lower + traced_upper + undecided_in + straddle_und;
+  result.region.area_lower = std::max(0.0, lower * (1.0 - 1e-13));
+  result.region.area_upper = upper * (1.0 + 1e-13);
+  result.undecided_area = undecided_in + straddle_und;
+  result.traced_width = traced_upper - traced_lower;
+  result.region.exact = false;
+  if (options.build_regions) {
+    std::vector<Region> inner_parts = lo_polys;
+    inner_parts.push_back(within.intersect(boxes_region(inside_all)));
+    Region inner = Region::unite_all(inner_parts);
+    std::vector<Region> outer_parts = hi_polys;
+    outer_parts.push_back(inner);
+    if (!undecided_all.empty()) outer_parts.push_back(within.intersect(boxes_region(undecided_all)));
+    Region outer = Region::unite_all(outer_parts);
+    result.region.inner = std::move(inner);
+    result.region.outer = std::move(outer);
+  }
+  return result;
+}
+
+}  // namespace
+
+LevelSetResult sublevel_set(const ScalarField& field, double level, const Region& within, const WithinTest& within_test,
+                            const LevelSetOptions& options) {
+  if (!(options.relative_tolerance > 0.0)) throw std::invalid_argument("sublevel_set: relative_tolerance must be positive");
+  if (options.refine_depth < 0 || options.refine_depth > 40) throw std::invalid_argument("sublevel_set: refine_depth in [0, 40]");
+  if (within.empty()) {
+    LevelSetResult r;
+    r.region = from_exact(within);
+    return r;
+  }
+  LevelSetResult r = run_once(field, level, within, within_test, options, 0.0);
+  // One retry with a tighter τ when the estimate of area or curve length was off.
+  const double width = r.region.area_upper - r.region.area_lower;
+  if (options.trace && width > options.relative_tolerance * r.region.area_upper && r.traced_width > 0.5 * width) {
+    const double tau = r.tolerance_per_length * 0.5 * options.relative_tolerance * r.region.area_upper / width;
+    r = run_once(field, level, within, within_test, options, tau);
+  }
+  return r;
+}
+
+CertifiedRegion certify_cells(const ScalarField& field, double level, const Region& within, int base, int max_depth,
+                              int threads) {
+  CellOptions co;
+  co.base = base;
+  co.max_depth = max_depth;
+  co.threads = threads;
+  return certify([&](const Box& b) { return classify(field, level, b); }, within, co);
+}
+
+std::vector<Band> bands_from_sublevels(const std::vector<double>& levels, const std::vector<LevelSetResult>& sublevels) {
+  if (levels.size() != sublevels.size()) throw std::invalid_argument("bands_from_sublevels: one result per level");
+  std::vector<Band> out;
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    Band b;
+    b.upper_level = levels[k];
+    b.lower_level = k == 0 ? -inf : levels[k - 1];
+    const CertifiedRegion& s = sublevels[k].region;
+    if (k == 0) {
+      b.area_lower = s.area_lower;
+      b.area_upper = s.area_upper;
+    } else {
+      const CertifiedRegion& p = sublevels[k - 1].region;
+      // S_{k-1} ⊆ S_k: area(band) = area(S_k) - area(S_{k-1}).
+      b.area_lower = std::max(0.0, s.area_lower - p.area_upper);
+      b.area_upper = std::max(0.0, s.area_upper - p.area_lower);
+    }
+    out.push_back(b);
+  }
+  return out;
+}
+
+}  // namespace pkmws::certified

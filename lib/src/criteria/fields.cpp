@@ -1,0 +1,398 @@
+// Criterion fields (see criteria/fields.hpp; derivations in docs/theory/level_sets.md).
+#include "pkmws/criteria/fields.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+
+namespace pkmws::criteria {
+
+using certified::CellState;
+using certified::Interval;
+using certified::Jet;
+using geometry::Box;
+using geometry::Point;
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+constexpr double deg = pi / 180.0;
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+// Adapter: a field written once as `template <class T> T eval(T x, T y)` for
+// T = double, Interval, Jet<double>, Jet<Interval>, plus its domain test.
+template <class Impl>
+class TemplateField final : public certified::ScalarField {
+ public:
+  explicit TemplateField(Impl impl) : impl_(std::move(impl)) {}
+  double value(Point p) const override { return impl_.template eval<double>(p.x, p.y); }
+  Jet<double> jet(Point p) const override {
+    return impl_.template eval<Jet<double>>(Jet<double>::variable_x(p.x), Jet<double>::variable_y(p.y));
+  }
+  certified::Grad<double> grad(Point p) const override {
+    using G = certified::Grad<double>;
+    return impl_.template eval<G>(G::variable_x(p.x), G::variable_y(p.y));
+  }
+  certified::Grad<Interval> grad(const Box& b) const override {
+    using G = certified::Grad<Interval>;
+    return impl_.template eval<G>(G::variable_x(Interval(b.min.x, b.max.x)), G::variable_y(Interval(b.min.y, b.max.y)));
+  }
+  Interval enclose(const Box& b) const override {
+    return impl_.template eval<Interval>(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y));
+  }
+  Jet<Interval> jet(const Box& b) const override {
+    return impl_.template eval<Jet<Interval>>(Jet<Interval>::variable_x(Interval(b.min.x, b.max.x)),
+                                              Jet<Interval>::variable_y(Interval(b.min.y, b.max.y)));
+  }
+  CellState domain(const Box& b) const override { return impl_.domain(b); }
+
+ private:
+  Impl impl_;
+};
+
+// |p - c|² over a box (tight: separable).
+Interval dist2(const Box& b, Point c) {
+  return certified::sqr(Interval(b.min.x, b.max.x) - Interval(c.x)) +
+         certified::sqr(Interval(b.min.y, b.max.y) - Interval(c.y));
+}
+
+// ---------------------------------------------------------------------------
+// Five-bar: cos ε from the inverse kinematics in closed form.
+//
+// Leg i, w = C - A_i, r² = |w|²: the elbow is B_i = A_i + a w + s b J w with
+// a = 1/2 + (l1² - l2²) / (2 r²), b = sqrt(D) / (2 r²),
+// D = ((l1 + l2)² - r²)(r² - (l1 - l2)²) (law of cosines, docs/theory/five_bar.md
+// eq. IK: cos β = (r² + l1² - l2²) / (2 r l1)), J the rotation by +90°, and
+// s the working mode (s = sign(w x (B_i - A_i))). Distal vector
+// u_i = C - B_i = (1 - a) w - s b J w; cos ε = u_1 . u_2 / (l12 l22).
+struct FiveBarCosEps {
+  std::array<Point, 2> base;
+  std::array<double, 2> l1, l2, s;
+  std::array<double, 2> r_out2, r_in2;
+
+  explicit FiveBarCosEps(const mechanisms::FiveBar& m) {
+    for (std::size_t i = 0; i < 2; ++i) {
+      const auto& leg = m.legs()[i];
+      base[i] = leg.base;
+      l1[i] = leg.proximal;
+      l2[i] = leg.distal;
+      s[i] = leg.working_mode;
+      r_out2[i] = (l1[i] + l2[i]) * (l1[i] + l2[i]);
+      r_in2[i] = (l1[i] - l2[i]) * (l1[i] - l2[i]);
+    }
+  }
+  template <class T> T cos_eps(const T& x, const T& y) const {
+    using certified::max;
+    using certified::sqr;
+    using std::sqrt;
+    using certified::sqrt;
+    std::array<T, 2> ux, uy;
+    for (std::size_t i = 0; i < 2; ++i) {
+      // Derived constants in T arithmetic, so that interval evaluations enclose
+      // their rounding too.
+      const T p = T(l1[i]), q = T(l2[i]);
+      const T wx = x - base[i].x, wy = y - base[i].y;
+      const T r2 = sqr(wx) + sqr(wy);
+      const T inv2r2 = 0.5 / r2;
+      const T one_minus_a = 0.5 - (p - q) * (p + q) * inv2r2;
+      const T d = (sqr(p + q) - r2) * (r2 - sqr(p - q));
+      const T b = sqrt(max(d, 0.0)) * inv2r2;
+      ux[i] = one_minus_a * wx + s[i] * (b * wy);
+      uy[i] = one_minus_a * wy - s[i] * (b * wx);
+    }
+    return (ux[0] * ux[1] + uy[0] * uy[1]) / (T(l2[0]) * T(l2[1]));
+  }
+  template <class T> T eval(const T& x, const T& y) const { return certified::sqr(cos_eps(x, y)); }
+  // Smooth where every leg is strictly inside its annulus (D > 0, r > 0).
+  CellState domain(const Box& b) const {
+    bool inside = true;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const Interval r2 = dist2(b, base[i]);
+      if (r2.lo > r_out2[i] || r2.hi < r_in2[i]) return CellState::outside;
+      inside = inside && r2.hi < r_out2[i] && r2.lo > r_in2[i] && r2.lo > 0.0;
+    }
+    return inside ? CellState::inside : CellState::undecided;
+  }
+};
+
+// ---------------------------------------------------------------------------
+// 3-RPR at a fixed orientation φ: B_j = P + c_j, c_j = R(φ) b'_j; leg vector
+// d_j = B_j - A_j = P - e_j, e_j = A_j - c_j. Unnormalised force direction n_j:
+// J d_j (revolute actuation: perpendicular to the leg) or d_j (prismatic).
+// Rows a_j = [n_j, c_j x n_j] (moments about P, seed 004's f_i), linear in P.
+// Column i of A^{-1} is (a_j x a_k) / det(a_0, a_1, a_2) ((i, j, k) cyclic), and
+// normalising row i by |n_i| = |d_i| = ρ_i multiplies it by ρ_i, so the twist
+// with only actuator i free is t_i = ρ_i (a_j x a_k) / det: v_P,i = its first two
+// components, ω_i the third (planar_transmission.hpp).
+struct ThreeRprTwist {
+  std::array<Point, 3> c, e;
+  bool revolute = true;
+  int leg = 0;
+  // Which quantity: 0 = R_i,max, 1 = |v_B_i|².
+  int what = 0;
+  double f = 0.0, m = 0.0;
+  std::optional<Box> window;
+  std::optional<std::array<std::array<double, 2>, 3>> limits;
+
+  ThreeRprTwist(const mechanisms::ThreeRpr& mech, int leg_index, int quantity, const mechanisms::Load& load)
+      : revolute(mech.actuation() == mechanisms::ThreeRprActuation::revolute), leg(leg_index), what(quantity),
+        f(load.force_N), m(std::abs(load.moment_Nm)), window(mech.analysis_window()), limits(mech.leg_limits()) {
+    const double phi = mech.orientation();
+    for (std::size_t j = 0; j < 3; ++j) {
+      const Point b = mech.platform()[j];
+      c[j] = {std::cos(phi) * b.x - std::sin(phi) * b.y, std::sin(phi) * b.x + std::cos(phi) * b.y};
+      e[j] = mech.base()[j] - c[j];
+    }
+  }
+
+  template <class T> struct Parts {
+    T det, w0, w1, w2, rho2;
+  };
+  template <class T> Parts<T> parts(const T& x, const T& y) const {
+    std::array<std::array<T, 3>, 3> a;
+    std::array<T, 3> rho2;
+    for (std::size_t j = 0; j < 3; ++j) {
+      const T dx = x - e[j].x, dy = y - e[j].y;
+      T nx = dx, ny = dy;
+      if (revolute) {
+        nx = -dy;
+        ny = dx;
+      }
+      a[j][0] = nx;
+      a[j][1] = ny;
+      a[j][2] = c[j].x * ny - c[j].y * nx;  // (B_j - P) x n_j = c_j x n_j
+      rho2[j] = certified::sqr(dx) + certified::sqr(dy);
+    }
+    const auto i = static_cast<std::size_t>(leg);
+    const std::size_t j = (i + 1) % 3, k = (i + 2) % 3;
+    Parts<T> p;
+    p.w0 = a[j][1] * a[k][2] - a[j][2] * a[k][1];
+    p.w1 = a[j][2] * a[k][0] - a[j][0] * a[k][2];
+    p.w2 = a[j][0] * a[k][1] - a[j][1] * a[k][0];
+    p.det = a[i][0] * p.w0 + a[i][1] * p.w1 + a[i][2] * p.w2;
+    p.rho2 = rho2[i];
+    return p;
+  }
+  template <class T> T eval(const T& x, const T& y) const {
+    using certified::sqr;
+    using certified::sqrt;
+    using std::abs;
+    using std::sqrt;
+    using certified::abs;
+    const Parts<T> p = parts(x, y);
+    if (what == 1) {
+      // v_B_i = v_P + ω J c_i: |v_B_i|² = ρ_i² |(w0 - w2 c_iy, w1 + w2 c_ix)|² / det².
+      const Point ci = c[static_cast<std::size_t>(leg)];
+      const T vx = p.w0 - ci.y * p.w2, vy = p.w1 + ci.x * p.w2;
+      return p.rho2 * (sqr(vx) + sqr(vy)) / sqr(p.det);
+    }
+    // SPEC §1.5: R_i,max = f |v_P,i| + |m| |ω_i|.
+    const T num = f * sqrt(sqr(p.w0) + sqr(p.w1)) + m * abs(p.w2);
+    return sqrt(p.rho2) * num / abs(p.det);
+  }
+  CellState domain(const Box& b) const {
+    const Parts<Interval> p = parts(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y));
+    if (p.det.contains_zero() || p.rho2.lo <= 0.0) return CellState::undecided;
+    return CellState::inside;
+  }
+  // Box ⊆ workspace: inside the window and the leg annuli.
+  CellState within(const Box& b) const {
+    bool inside = true;
+    if (window) {
+      if (b.max.x < window->min.x || b.min.x > window->max.x || b.max.y < window->min.y || b.min.y > window->max.y)
+        return CellState::outside;
+      inside = b.min.x >= window->min.x && b.max.x <= window->max.x && b.min.y >= window->min.y && b.max.y <= window->max.y;
+    }
+    if (limits) {
+      for (std::size_t j = 0; j < 3; ++j) {
+        const Interval r2 = dist2(b, e[j]);
+        const double lo2 = (*limits)[j][0] * (*limits)[j][0], hi2 = (*limits)[j][1] * (*limits)[j][1];
+        if (r2.lo > hi2 || r2.hi < lo2) return CellState::outside;
+        inside = inside && r2.hi < hi2 && r2.lo > lo2;
+      }
+    }
+    return inside ? CellState::inside : CellState::undecided;
+  }
+};
+
+const mechanisms::FiveBar* as_five_bar(const io::MechanismFile& file) {
+  return dynamic_cast<const mechanisms::FiveBar*>(file.model.get());
+}
+const mechanisms::ThreeRpr* as_three_rpr(const io::MechanismFile& file) {
+  return dynamic_cast<const mechanisms::ThreeRpr*>(file.model.get());
+}
+
+double five_bar_alpha_deg(const FiveBarCosEps& f, Point p) {
+  if (f.domain(Box{p, p}) == CellState::outside) return nan;
+  const double ce = std::clamp(f.cos_eps<double>(p.x, p.y), -1.0, 1.0);
+  // α = acos|sin ε| = asin|cos ε| (seed 004).
+  return std::asin(std::abs(ce)) / deg;
+}
+
+}  // namespace
+
+CriterionField five_bar_pressure_angle(const mechanisms::FiveBar& mechanism) {
+  const FiveBarCosEps impl(mechanism);
+  CriterionField c;
+  c.name = "pressure_angle";
+  c.unit = "deg";
+  c.key = "five_bar.cos2eps";
+  c.surrogate = std::make_shared<TemplateField<FiveBarCosEps>>(impl);
+  // α <= α_max  <=>  |cos ε| <= sin α_max  <=>  cos²ε <= sin²α_max.
+  c.level = [](double alpha_deg) {
+    const double a = std::clamp(alpha_deg, 0.0, 90.0) * deg;
+    return std::sin(a) * std::sin(a);
+  };
+  c.value = [impl](Point p) { return five_bar_alpha_deg(impl, p); };
+  c.within_test = [impl](const Box& b) { return impl.domain(b); };
+  return c;
+}
+
+CriterionField five_bar_reaction(const mechanisms::FiveBar& mechanism, double force_N) {
+  const FiveBarCosEps impl(mechanism);
+  CriterionField c = five_bar_pressure_angle(mechanism);
+  c.name = "reaction";
+  c.unit = "N";
+  // R = f / |sin ε| <= R_max  <=>  cos²ε <= 1 - (f / R_max)² (docs/theory/five_bar.md).
+  c.level = [force_N](double r_max) {
+    if (!(r_max > 0.0)) return -1.0;
+    const double q = force_N / r_max;
+    return q >= 1.0 ? (q == 1.0 ? 0.0 : -1.0) : 1.0 - q * q;
+  };
+  c.value = [impl, force_N](Point p) {
+    const double a = five_bar_alpha_deg(impl, p);
+    if (std::isnan(a)) return nan;
+    const double sin_eps = std::cos(a * deg);
+    return sin_eps > 0.0 ? force_N / sin_eps : std::numeric_limits<double>::infinity();
+  };
+  return c;
+}
+
+CriterionField three_rpr_reaction(const mechanisms::ThreeRpr& mechanism, const mechanisms::Load& load, int leg) {
+  if (leg < 0 || leg > 2) throw std::invalid_argument("three_rpr_reaction: leg must be 0, 1 or 2");
+  const ThreeRprTwist impl(mechanism, leg, 0, load);
+  CriterionField c;
+  c.name = "reaction";
+  c.unit = "N";
+  c.key = "three_rpr.reaction" + std::to_string(leg);
+  c.surrogate = std::make_shared<TemplateField<ThreeRprTwist>>(impl);
+  c.level = [](double r) { return r; };
+  c.value = [impl](Point p) { return impl.eval<double>(p.x, p.y); };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
+  return c;
+}
+
+CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, int leg) {
+  if (leg < 0 || leg > 2) throw std::invalid_argument("three_rpr_pressure_angle: leg must be 0, 1 or 2");
+  const ThreeRprTwist impl(mechanism, leg, 1, mechanisms::Load{});
+  CriterionField c;
+  c.name = "pressure_angle";
+  c.unit = "deg";
+  c.key = "three_rpr.vb2_" + std::to_string(leg);
+  c.surrogate = std::make_shared<TemplateField<ThreeRprTwist>>(impl);
+  // seed 004: cos α_i = |r_i . v_i| / |v_i| = 1 / |v_i|  =>  α_i <= α  <=>  |v_i|² <= 1 / cos²α.
+  c.level = [](double alpha_deg) {
+    const double ca = std::cos(std::clamp(alpha_deg, 0.0, 90.0) * deg);
+    return ca > 0.0 ? 1.0 / (ca * ca) : std::numeric_limits<double>::infinity();
+  };
+  c.value = [impl](Point p) {
+    const double v2 = impl.eval<double>(p.x, p.y);
+    if (!std::isfinite(v2)) return 90.0;
+    return std::acos(std::min(1.0, 1.0 / std::sqrt(v2))) / deg;
+  };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
+  return c;
+}
+
+std::vector<CriterionField> fields_for(const io::MechanismFile& file, const std::string& name) {
+  if (name != "pressure_angle" && name != "reaction") {
+    throw io::InputError("unknown criterion \"" + name + "\" (expected pressure_angle or reaction)");
+  }
+  if (const auto* fb = as_five_bar(file)) {
+    for (int i = 0; i < 2; ++i) {
+      if (fb->crank_limits(i)) {
+        throw io::InputError(file.path + ": level sets of five-bars with crank limits are not supported "
+                             "(the criterion fields assume freely rotating cranks)");
+      }
+    }
+    if (name == "pressure_angle") return {five_bar_pressure_angle(*fb)};
+    if (!file.criteria.load) throw io::InputError(file.path + ": the reaction criterion needs criteria.load");
+    return {five_bar_reaction(*fb, file.criteria.load->force_N)};
+  }
+  if (const auto* rpr = as_three_rpr(file)) {
+    if (!rpr->leg_limits() && !rpr->analysis_window()) {
+      throw io::InputError(file.path + ": three_rpr level sets need leg_limits or an analysis_window");
+    }
+    std::vector<int> legs = file.reaction_legs;
+    if (legs.empty()) legs = {1, 2, 3};
+    std::vector<CriterionField> out;
+    for (int leg : legs) {
+      if (name == "reaction") {
+        if (!file.criteria.load) throw io::InputError(file.path + ": the reaction criterion needs criteria.load");
+        out.push_back(three_rpr_reaction(*rpr, *file.criteria.load, leg - 1));
+      } else {
+        out.push_back(three_rpr_pressure_angle(*rpr, leg - 1));
+      }
+    }
+    return out;
+  }
+  throw io::InputError(file.path + ": certified level sets are implemented for five_bar and three_rpr, not " +
+                       file.mechanism);
+}
+
+std::vector<Limit> file_limits(const io::MechanismFile& file) {
+  std::vector<Limit> out;
+  const auto& c = file.criteria;
+  if (c.max_pressure_angle_deg) out.push_back({"pressure_angle", *c.max_pressure_angle_deg});
+  if (c.max_reaction_N) out.push_back({"reaction", *c.max_reaction_N});
+  if (c.max_velocity_ratio) {
+    throw io::InputError(file.path + ": criteria.max_velocity_ratio: certified level sets of the velocity ratio "
+                         "are not implemented yet (use pkmws eval for point values)");
+  }
+  return out;
+}
+
+geometry::Region criteria_domain(const io::MechanismFile& file) { return file.model->workspace(); }
+
+LimitedWorkspace limited_workspace(const io::MechanismFile& file, const std::vector<Limit>& limits,
+                                   const certified::LevelSetOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  LimitedWorkspace out;
+  const geometry::Region within = criteria_domain(file);
+  // Group by surrogate: the stricter level per key.
+  std::map<std::string, std::pair<CriterionField, double>> by_key;
+  for (const Limit& l : limits) {
+    for (CriterionField& f : fields_for(file, l.name)) {
+      const double level = f.level(l.threshold);
+      auto it = by_key.find(f.key);
+      if (it == by_key.end()) {
+        by_key.emplace(f.key, std::make_pair(f, level));
+      } else {
+        it->second.second = std::min(it->second.second, level);
+      }
+    }
+  }
+  if (by_key.empty()) {
+    out.region = certified::from_exact(within);
+  } else {
+    certified::LevelSetOptions o = options;
+    if (by_key.size() > 1) o.build_regions = true;  // the intersection needs the regions
+    bool first = true;
+    for (auto& [key, entry] : by_key) {
+      certified::LevelSetResult r =
+          certified::sublevel_set(*entry.first.surrogate, entry.second, within, entry.first.within_test, o);
+      for (auto& piece : r.curves) out.curves.push_back(std::move(piece));
+      out.region = first ? r.region : certified::intersect(out.region, r.region);
+      first = false;
+    }
+  }
+  out.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace pkmws::criteria
