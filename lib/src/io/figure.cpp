@@ -142,7 +142,21 @@ std::string workspace_figure(const MechanismFile& file, const geometry::Region& 
   const long ky1 = static_cast<long>(std::floor(frame.max.y / step));
   const std::vector<std::string> caption = wrap(options.caption, 92);
   const bool legend = mech;
-  const double below = 52.0 + (legend ? 30.0 : 0.0) + 20.0 * static_cast<double>(caption.size()) + 14.0;
+  // Overlay legend rows: entries wrap at the figure's width (as drawn below).
+  std::size_t overlay_legends = 0;
+  double overlay_rows = 0.0;
+  {
+    double x = 1e300;
+    for (const auto& ov : options.overlays) {
+      if (ov.legend.empty()) continue;
+      ++overlay_legends;
+      const double w = 24 + 8 + 7.0 * static_cast<double>(ov.legend.size()) + 22;
+      if (x + w - 22 > width - 10) { overlay_rows += 1.0; x = 10.0; }
+      x += w;
+    }
+  }
+  const double below = 52.0 + (legend ? 30.0 : 0.0) + 20.0 * static_cast<double>(caption.size()) + 14.0 +
+                       (overlay_legends ? 20.0 * overlay_rows + 20.0 : 0.0);
   const double height = std::ceil(top + plot_h + below);
   auto to_px = [&](Point p) {
     return Point{left + (p.x - frame.min.x) * s, top + (frame.max.y - p.y) * s};
@@ -183,7 +197,24 @@ std::string workspace_figure(const MechanismFile& file, const geometry::Region& 
   o += "<g transform=\"translate(" + g17(left - frame.min.x * s) + " " + g17(top + frame.max.y * s) +
        ") scale(" + g17(s) + " " + g17(-s) + ")\">\n";
   o += "<path fill=\"" + kFill + "\" fill-rule=\"evenodd\" stroke=\"" + kOutline + "\" stroke-width=\"" +
-       g17(outline) + "\" stroke-linejoin=\"round\" d=\"" + svg_path(region) + "\"/>\n</g>\n";
+       g17(outline) + "\" stroke-linejoin=\"round\" d=\"" + svg_path(region) + "\"/>\n";
+  for (const auto& ov : options.overlays) {
+    if (ov.region.empty()) continue;
+    o += "<path fill=\"" + ov.fill + "\" fill-opacity=\"" + g17(ov.fill_opacity) + "\" fill-rule=\"evenodd\" stroke=\"" +
+         ov.stroke + "\" stroke-width=\"" + g17(ov.stroke_px / s) + "\" stroke-linejoin=\"round\" d=\"" +
+         svg_path(ov.region) + "\"/>\n";
+  }
+  o += "</g>\n";
+  for (const auto& ov : options.overlays) {
+    if (ov.region.empty() || ov.label.empty()) continue;
+    const auto comps = ov.region.components();
+    if (comps.empty()) continue;
+    const auto big = std::max_element(comps.begin(), comps.end(),
+                                      [](const auto& a, const auto& b) { return a.area < b.area; });
+    const Point at = to_px(big->centroid);
+    o += text_el(at, ov.label, "font-size=\"11\" text-anchor=\"middle\" fill=\"#111\" stroke=\"white\" "
+                               "stroke-width=\"3\" paint-order=\"stroke\"");
+  }
 
   // Type-2 singularity curves (dashed), inside the frame.
   for (const auto& curve : drawing.singular_curves) {
@@ -305,6 +336,25 @@ std::string workspace_figure(const MechanismFile& file, const geometry::Region& 
       x += 24 + 8 + 7.5 * static_cast<double>(names[i].size()) + 28;
     }
     y += 12;
+  }
+  {
+    std::vector<const FigureOptions::Overlay*> items;
+    for (const auto& ov : options.overlays) {
+      if (!ov.legend.empty()) items.push_back(&ov);
+    }
+    double x = 1e300;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      if (x + 24 + 8 + 7.0 * static_cast<double>(items[i]->legend.size()) > width - 10) {
+        y += 20;
+        x = 10.0;
+      }
+      const auto& ov = *items[i];
+      o += "<rect x=\"" + px(x) + "\" y=\"" + px(y - 11) + "\" width=\"24\" height=\"14\" fill=\"" + ov.fill +
+           "\" fill-opacity=\"" + g17(ov.fill_opacity) + "\" stroke=\"" + ov.stroke + "\" stroke-width=\"1.5\"/>\n";
+      o += text_el({x + 32, y}, ov.legend, "font-size=\"12\" fill=\"#111\"");
+      x += 24 + 8 + 7.0 * static_cast<double>(ov.legend.size()) + 22;
+    }
+    if (!items.empty()) y += 8;
   }
 
   // Caption.

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "pkmws/geometry/region.hpp"
 #include "pkmws/io/mechanism_file.hpp"
@@ -59,6 +60,18 @@ struct FigureOptions {
   std::string title;
   std::string caption;  // e.g. "area = 73 205.4 mm²"
   bool draw_mechanism = true;
+  /// Regions drawn over the workspace in order (e.g. interference regions
+  /// shaded and the real workspace outlined in black, seed 000 figs. 5-11).
+  struct Overlay {
+    geometry::Region region;
+    std::string fill = "none";      // SVG colour or "none"
+    double fill_opacity = 1.0;
+    std::string stroke = "black";   // SVG colour or "none"
+    double stroke_px = 2.0;
+    std::string label;              // written at its largest component's centroid (empty: none)
+    std::string legend;             // legend entry (empty: none)
+  };
+  std::vector<Overlay> overlays;
 };
 std::string workspace_figure(const MechanismFile& file, const geometry::Region& region,
                              const mechanisms::Pose& pose, const FigureOptions& options);
