@@ -2,7 +2,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "cli.hpp"
+#include "bodies_cli.hpp"
 #include "pkmws/io/export.hpp"
 
 namespace pkmws::cli {
@@ -43,10 +43,21 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
         } else {
           io::FigureOptions figure;
           figure.title = mech.name;
-          char caption[256];
+          char caption[512];
           std::snprintf(caption, sizeof caption, "exact workspace area = %.10g %s", region.area(),
                         area_unit(mech).c_str());
           figure.caption = caption;
+          if (mech.bodies) {
+            // SPEC §3.2: computed workspace (filled), interference regions shaded and
+            // labelled by pair, the real workspace outlined in black (seed 000 figs. 5-11).
+            const auto real = real_workspace_of(mech, region, 7);
+            figure.overlays = real_workspace_overlays(real);
+            std::snprintf(caption, sizeof caption,
+                          "computed workspace %.8g %s (filled); real workspace %.8g %s (%s, %.8g..%.8g; black outline)",
+                          region.area(), area_unit(mech).c_str(), real.real.area_estimate(), area_unit(mech).c_str(),
+                          real.real.method().c_str(), real.real.area_lower, real.real.area_upper);
+            figure.caption = caption;
+          }
           content = io::workspace_figure(mech, region, sample_pose(mech, region), figure);
         }
         break;

@@ -1,0 +1,26 @@
+// The real workspace on the command line (SPEC §3.2): `pkmws explain`, and the
+// pieces `area`, `export` and `eval` use when a file lists `bodies`.
+#pragma once
+
+#include "cli.hpp"
+#include "pkmws/bodies/bodies.hpp"
+#include "pkmws/io/export.hpp"
+
+namespace pkmws::cli {
+
+void add_explain(CLI::App& app, std::vector<Command>& commands);
+
+/// Which parts collide at platform point p (the pose-level test), as JSON:
+/// reachable, collides, collisions ["a / b", ...], pairs [{parts, kind, clearance, collides}].
+Json collisions_json(const io::MechanismFile& file, geometry::Point p);
+
+/// The real workspace of a file with bodies (quadtree depth `depth`).
+bodies::RealWorkspace real_workspace_of(const io::MechanismFile& file, const geometry::Region& reachable, int depth);
+
+/// `real_area`, `real_area_lower`, `real_area_upper`, `real_method`, `interference` [...] for `area --json`.
+Json real_workspace_json(const bodies::RealWorkspace& real);
+
+/// The figure overlays: interference regions shaded and labelled by pair, the real workspace outlined in black.
+std::vector<io::FigureOptions::Overlay> real_workspace_overlays(const bodies::RealWorkspace& real);
+
+}  // namespace pkmws::cli

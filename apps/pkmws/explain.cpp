@@ -1,0 +1,139 @@
+// pkmws explain FILE X Y [--json]: which parts collide at that platform
+// position (SPEC §3.2), and the real-workspace helpers of area / export / eval.
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "bodies_cli.hpp"
+#include "pkmws/io/export.hpp"
+
+namespace pkmws::cli {
+
+namespace {
+
+// Pair labels as drawn and printed: "rod1 / housing2", "rod1 ∠ rod2" for the link angle.
+std::string pair_label(const std::string& a, const std::string& b, const std::string& kind) {
+  return kind == "link_angle" ? a + " ∠ " + b : a + " / " + b;
+}
+
+const std::vector<std::string> kPalette = {"#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b",
+                                           "#e377c2", "#17becf", "#bcbd22", "#7f7f7f", "#d62728"};
+
+}  // namespace
+
+Json collisions_json(const io::MechanismFile& file, geometry::Point p) {
+  const auto check = bodies::check_pose(*file.bodies, p);
+  Json out{{"reachable", check.reachable}, {"collides", check.collides()}};
+  Json hits = Json::array(), pairs = Json::array();
+  for (const auto& c : check.contacts) {
+    Json j{{"parts", {c.a, c.b}}, {"kind", c.kind}, {"collides", c.collides}};
+    if (c.kind == "link_angle") {
+      j["angle_margin_deg"] = c.clearance * 180.0 / std::numbers::pi;
+    } else {
+      j["clearance"] = c.clearance;
+    }
+    pairs.push_back(j);
+    if (c.collides) hits.push_back(pair_label(c.a, c.b, c.kind));
+  }
+  out["collisions"] = hits;
+  out["pairs"] = pairs;
+  if (!check.reachable) out["reason"] = "not in the reachable workspace (inverse kinematics or a stroke fails)";
+  return out;
+}
+
+bodies::RealWorkspace real_workspace_of(const io::MechanismFile& file, const geometry::Region& reachable, int depth) {
+  bodies::InterferenceOptions options;
+  options.max_depth = depth;
+  return bodies::real_workspace(*file.bodies, reachable, options);
+}
+
+Json real_workspace_json(const bodies::RealWorkspace& real) {
+  Json out;
+  out["reachable_area"] = real.reachable.area_lower;
+  out["real_area"] = real.real.area_estimate();
+  out["real_area_lower"] = real.real.area_lower;
+  out["real_area_upper"] = real.real.area_upper;
+  out["real_method"] = real.real.method();
+  Json list = Json::array();
+  for (const auto& i : real.interference) {
+    list.push_back({{"parts", {i.a, i.b}},
+                    {"kind", i.kind},
+                    {"method", i.region.method()},
+                    {"area_lower", i.region.area_lower},
+                    {"area_upper", i.region.area_upper}});
+  }
+  out["interference"] = list;
+  return out;
+}
+
+std::vector<io::FigureOptions::Overlay> real_workspace_overlays(const bodies::RealWorkspace& real) {
+  std::vector<io::FigureOptions::Overlay> out;
+  std::size_t colour = 0;
+  for (const auto& i : real.interference) {
+    if (i.region.outer.empty()) continue;
+    io::FigureOptions::Overlay ov;
+    // The outer enclosure (certainly contains the region), shaded.
+    ov.region = i.region.outer;
+    ov.fill = kPalette[colour++ % kPalette.size()];
+    ov.fill_opacity = 0.45;
+    ov.stroke = "none";
+    ov.label = pair_label(i.a, i.b, i.kind);
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s (%.4g..%.4g)", ov.label.c_str(), i.region.area_lower, i.region.area_upper);
+    ov.legend = buf;
+    out.push_back(std::move(ov));
+  }
+  io::FigureOptions::Overlay outline;
+  outline.region = real.real.inner;
+  outline.fill = "none";
+  outline.stroke = "black";
+  outline.stroke_px = 2.2;
+  outline.legend = real.real.exact ? "real workspace" : "real workspace (inner enclosure)";
+  out.push_back(std::move(outline));
+  return out;
+}
+
+void add_explain(CLI::App& app, std::vector<Command>& commands) {
+  auto* sub = app.add_subcommand("explain", "Which parts collide at a platform position (needs `bodies`)");
+  struct Args {
+    std::string file, x, y;
+    bool json = false;
+  };
+  auto a = std::make_shared<Args>();
+  sub->add_option("FILE", a->file, "Mechanism file (JSON) with bodies")->required();
+  sub->add_option("X", a->x, "Platform x")->required();
+  sub->add_option("Y", a->y, "Platform y")->required();
+  sub->add_flag("--json", a->json, "Print one JSON object");
+  commands.push_back({sub, [a] {
+    const double x = parse_number(a->x, "X"), y = parse_number(a->y, "Y");
+    const io::MechanismFile mech = io::load_mechanism(a->file);
+    if (!mech.bodies) throw io::InputError(a->file + ": the file lists no `bodies` (SPEC §3.2): nothing can collide");
+    Json out = collisions_json(mech, {x, y});
+    out["name"] = mech.name;
+    out["point"] = {x, y};
+    out["units"] = mech.units;
+    if (a->json) {
+      print_json(out);
+      return 0;
+    }
+    std::printf("%s at (%.6g, %.6g) %s\n", mech.name.c_str(), x, y, mech.units.c_str());
+    if (!out["reachable"].get<bool>()) {
+      std::printf("not reachable: %s\n", out["reason"].get<std::string>().c_str());
+      return 0;
+    }
+    std::printf("%s\n", out["collides"].get<bool>() ? "COLLISION" : "no collision");
+    for (const auto& p : out["pairs"]) {
+      const std::string label = pair_label(p["parts"][0], p["parts"][1], p["kind"]);
+      if (p["kind"] == "link_angle") {
+        std::printf("  %-28s %s  angle %+.4g deg from the minimum\n", label.c_str(),
+                    p["collides"].get<bool>() ? "collide" : "clear  ", p["angle_margin_deg"].get<double>());
+      } else {
+        std::printf("  %-28s %s  clearance %+.6g %s\n", label.c_str(), p["collides"].get<bool>() ? "collide" : "clear  ",
+                    p["clearance"].get<double>(), mech.units.c_str());
+      }
+    }
+    return 0;
+  }});
+}
+
+}  // namespace pkmws::cli
