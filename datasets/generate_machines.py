@@ -52,19 +52,19 @@ def leg(ref, angle_deg, l, branch=-1):
 
 
 def moma_files():
-    yield ("moma_m1_machine",
+    yield ("machine_moma_m1",
            "MOMA desktop machine, M1 (gamma = 0°), l = 250 mm, with bodies",
            "MOMA M1 with the part sizes of the desktop machine: computed and real workspace (seed 000 fig. 5)",
            [leg([-100, 0], 270, 250), leg([100, 0], 270, 250)],
            "Fig. 5 (§4.1): M1, alpha = 270 deg, l1 = l2 = 250 mm, R = (-100, 0), (100, 0), h_max = 200 mm")
-    yield ("moma_m3_machine",
+    yield ("machine_moma_m3",
            "MOMA desktop machine, M3 (quadrant III), l = 250 mm, with bodies",
            "MOMA M3 with the part sizes of the desktop machine: computed and real workspace (seed 000 fig. 7)",
            [leg([50, 0], 0, 250, 1), leg([0, 50], 90, 250, 1)],
            "Fig. 7 (§4.1): M3 as in moma_m3_l250.json (printed guides alpha1 = 0, alpha2 = 90 deg, "
            "R1 = (50, 0), R2 = (0, 50), other root of eq. 4 on both legs so that the platform lies in "
            "quadrant III; see that file and docs/theory/moma.md)")
-    yield ("moma_m5_machine",
+    yield ("machine_moma_m5",
            "MOMA desktop machine, M5 (gamma = 5°/-5°), l = 195 mm, with bodies",
            "MOMA M5 with the part sizes of the desktop machine: computed and real workspace (seed 000 fig. 11)",
            [leg([-100, 0], 275, 195), leg([100, 0], 265, 195)],
@@ -120,7 +120,7 @@ def main():
         with open(os.path.join(HERE, stem + ".json"), "w", encoding="utf-8") as f:
             json.dump(doc, f, ensure_ascii=False, indent=2)
             f.write("\n")
-    with open(os.path.join(HERE, "five_bar_dextar_bodies.json"), "w", encoding="utf-8") as f:
+    with open(os.path.join(HERE, "machine_five_bar_dextar.json"), "w", encoding="utf-8") as f:
         json.dump(five_bar_file(), f, ensure_ascii=False, indent=2)
         f.write("\n")
 
