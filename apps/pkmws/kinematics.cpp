@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "cli.hpp"
+#include "bodies_cli.hpp"
 #include "pkmws/io/export.hpp"
 #include "pkmws/mechanisms/three_rpr.hpp"
 #include "pkmws/mechanisms/three_rrp.hpp"
@@ -258,6 +258,8 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands) {
       modes.push_back(j);
     }
     out["modes"] = modes;
+    // SPEC §3.2: with bodies, which parts collide at this platform position.
+    if (mech.bodies) out["bodies"] = collisions_json(mech, {pose.x, pose.y});
     print_json(out);
     return 0;
   }});
