@@ -205,13 +205,23 @@ std::string workspace_figure(const MechanismFile& file, const geometry::Region& 
          svg_path(ov.region) + "\"/>\n";
   }
   o += "</g>\n";
+  std::vector<Point> placed;  // labels already written (px), so that the next ones do not cover them
   for (const auto& ov : options.overlays) {
     if (ov.region.empty() || ov.label.empty()) continue;
     const auto comps = ov.region.components();
     if (comps.empty()) continue;
     const auto big = std::max_element(comps.begin(), comps.end(),
                                       [](const auto& a, const auto& b) { return a.area < b.area; });
-    const Point at = to_px(big->centroid);
+    Point at = to_px(big->centroid);
+    const double half = 3.2 * static_cast<double>(ov.label.size());  // ~half the label's width at 11 px
+    for (int tries = 0; tries < 8; ++tries) {
+      const bool clash = std::any_of(placed.begin(), placed.end(), [&](Point q) {
+        return std::abs(q.x - at.x) < 2.0 * half && std::abs(q.y - at.y) < 13.0;
+      });
+      if (!clash) break;
+      at.y += 13.0;
+    }
+    placed.push_back(at);
     o += text_el(at, ov.label, "font-size=\"11\" text-anchor=\"middle\" fill=\"#111\" stroke=\"white\" "
                                "stroke-width=\"3\" paint-order=\"stroke\"");
   }
