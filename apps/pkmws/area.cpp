@@ -1,8 +1,9 @@
 // pkmws area FILE [--json]: the exact workspace area (SPEC §4).
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
-#include "cli.hpp"
+#include "bodies_cli.hpp"
 #include "pkmws/io/export.hpp"
 
 namespace pkmws::cli {
@@ -28,6 +29,12 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
     const double min_area = io::effective_min_area(region, {});
     Json report = region_report(region, min_area);
     const double area = report["area"];
+    // SPEC §3.2: with bodies, the real workspace = reachable − ∪ interference.
+    std::optional<bodies::RealWorkspace> real;
+    if (mech.bodies) {
+      real = real_workspace_of(mech, region, 7);
+      report.update(real_workspace_json(*real));
+    }
     const double time_ms = elapsed_ms(start);
     report["name"] = mech.name;
     report["mechanism"] = mech.mechanism;
@@ -53,6 +60,7 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
                     c["centroid"][0].get<double>(), c["centroid"][1].get<double>(),
                     c["inscribed_circle"]["radius"].get<double>());
       }
+      if (real) print_real_workspace(*real, area_unit(mech));
       std::printf("time       %.3f ms\n", time_ms);
     }
     return 0;

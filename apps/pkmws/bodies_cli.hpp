@@ -20,6 +20,9 @@ bodies::RealWorkspace real_workspace_of(const io::MechanismFile& file, const geo
 /// `real_area`, `real_area_lower`, `real_area_upper`, `real_method`, `interference` [...] for `area --json`.
 Json real_workspace_json(const bodies::RealWorkspace& real);
 
+/// The text lines of `pkmws area` for the real workspace (unit: e.g. "mm²").
+void print_real_workspace(const bodies::RealWorkspace& real, const std::string& unit);
+
 /// The figure overlays: interference regions shaded and labelled by pair, the real workspace outlined in black.
 std::vector<io::FigureOptions::Overlay> real_workspace_overlays(const bodies::RealWorkspace& real);
 

@@ -66,6 +66,26 @@ Json real_workspace_json(const bodies::RealWorkspace& real) {
   return out;
 }
 
+void print_real_workspace(const bodies::RealWorkspace& real, const std::string& unit) {
+  const auto& r = real.real;
+  std::printf("reachable  %.15g %s  (exact)\n", real.reachable.area_lower, unit.c_str());
+  if (r.exact) {
+    std::printf("real       %.15g %s  (exact: reachable minus interference)\n", r.area_lower, unit.c_str());
+  } else {
+    std::printf("real       %.10g %s  (certified: %.10g <= area <= %.10g)\n", r.area_estimate(), unit.c_str(),
+                r.area_lower, r.area_upper);
+  }
+  std::printf("interference (per pair, %s):\n", unit.c_str());
+  for (const auto& i : real.interference) {
+    const std::string label = pair_label(i.a, i.b, i.kind);
+    if (i.region.exact) {
+      std::printf("  %-28s %.10g  (exact)\n", label.c_str(), i.region.area_lower);
+    } else {
+      std::printf("  %-28s %.10g .. %.10g  (certified)\n", label.c_str(), i.region.area_lower, i.region.area_upper);
+    }
+  }
+}
+
 std::vector<io::FigureOptions::Overlay> real_workspace_overlays(const bodies::RealWorkspace& real) {
   std::vector<io::FigureOptions::Overlay> out;
   std::size_t colour = 0;
