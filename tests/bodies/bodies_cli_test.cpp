@@ -1,0 +1,158 @@
+// The real workspace on the command line and on the bundled machines (SPEC
+// §3.2): pkmws explain / area / export / eval, and every bundled machine's
+// interference regions against the pose-by-pose test.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "pkmws/bodies/bodies.hpp"
+#include "pkmws/io/mechanism_file.hpp"
+#include "classify.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace pkmws;
+
+namespace {
+
+std::string dataset(const std::string& stem) { return std::string(PKMWS_SOURCE_DIR) + "/datasets/" + stem + ".json"; }
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Result run(const std::string& args) {
+  const fs::path dir = fs::temp_directory_path() / ("pkmws-bodies-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path out = dir / "out.txt", err = dir / "err.txt";
+  const int raw = std::system((std::string(PKMWS_CLI) + " " + args + " >" + out.string() + " 2>" + err.string()).c_str());
+  Result r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+  fs::remove_all(dir);
+  return r;
+}
+
+TEST(BodiesCli, ExplainNamesTheCollidingParts) {
+  // M1 machine, P beyond guide 2 (x = 120): rod 1 crosses the axis body of guide 2.
+  auto r = run("explain " + dataset("machine_moma_m1") + " 120 -272 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto j = json::parse(r.out);
+  EXPECT_TRUE(j["reachable"].get<bool>());
+  EXPECT_TRUE(j["collides"].get<bool>());
+  bool rod_housing = false;
+  for (const auto& c : j["collisions"]) rod_housing = rod_housing || c == "rod1 / housing2";
+  EXPECT_TRUE(rod_housing) << r.out;
+  // Between the guides, low: nothing touches.
+  r = run("explain " + dataset("machine_moma_m1") + " 0 -350 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  j = json::parse(r.out);
+  EXPECT_FALSE(j["collides"].get<bool>());
+  EXPECT_TRUE(j["collisions"].empty());
+  EXPECT_EQ(j["pairs"].size(), 12u);  // 11 part pairs and the rods' angle
+  // Text form, an unreachable point, and a file without bodies (one line, exit 2).
+  r = run("explain " + dataset("machine_moma_m1") + " 120 -272");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("COLLISION"), std::string::npos);
+  r = run("explain " + dataset("machine_moma_m1") + " 0 0 --json");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_FALSE(json::parse(r.out)["reachable"].get<bool>());
+  r = run("explain " + dataset("moma_m1_g0_l250") + " 0 -300");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no `bodies`"), std::string::npos);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
+  r = run("explain " + dataset("machine_moma_m1") + " 0 nan");
+  EXPECT_EQ(r.status, 2);
+}
+
+TEST(BodiesCli, AreaReportsReachableAndRealWithBounds) {
+  const auto r = run("area " + dataset("machine_moma_m1") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = json::parse(r.out);
+  const double reach = j["reachable_area"], lo = j["real_area_lower"], hi = j["real_area_upper"];
+  EXPECT_NEAR(reach, j["area"].get<double>(), 1e-9 * reach);
+  EXPECT_LT(lo, hi);
+  EXPECT_LT(hi, reach);
+  EXPECT_EQ(j["real_method"], "certified");
+  double exact_sum = 0;
+  for (const auto& i : j["interference"]) {
+    EXPECT_LE(i["area_lower"].get<double>(), i["area_upper"].get<double>());
+    if (i["method"] == "exact") exact_sum += i["area_lower"].get<double>();
+  }
+  // Lost area: at least the largest single interference, at most their sum.
+  EXPECT_GT(exact_sum, 0.0);
+  const auto text = run("area " + dataset("machine_moma_m1"));
+  EXPECT_NE(text.out.find("real       "), std::string::npos);
+  EXPECT_NE(text.out.find("rod1 / housing2"), std::string::npos);
+}
+
+TEST(BodiesCli, ExportDrawsInterferenceAndRealOutline) {
+  const fs::path out = fs::temp_directory_path() / ("pkmws-bodies-fig-" + std::to_string(::getpid()) + ".svg");
+  const auto r = run("export " + dataset("machine_moma_m5") + " -f svg -o " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string svg = slurp(out);
+  fs::remove(out);
+  EXPECT_NE(svg.find("rod1 / housing2"), std::string::npos);
+  EXPECT_NE(svg.find("real workspace"), std::string::npos);
+  EXPECT_NE(svg.find("stroke=\"black\""), std::string::npos);
+  EXPECT_NE(svg.find("fill-opacity=\"0.4"), std::string::npos);
+}
+
+// Every bundled machine: the certified regions against the pose-by-pose test.
+TEST(BodiesMachines, EveryRegionAgreesWithThePoseTest) {
+  for (const char* stem : {"machine_moma_m1", "machine_moma_m3", "machine_moma_m5", "machine_five_bar_dextar"}) {
+    const auto mech = io::load_mechanism(dataset(stem));
+    ASSERT_TRUE(mech.bodies) << stem;
+    const auto reachable = mech.model->workspace();
+    bodies::InterferenceOptions opt;
+    opt.max_depth = 5;
+    const auto real = bodies::real_workspace(*mech.bodies, reachable, opt);
+    EXPECT_LT(real.real.area_upper, reachable.area()) << stem;  // the real workspace is smaller
+    EXPECT_GT(real.real.area_lower, 0.3 * reachable.area()) << stem;
+    // Pose test at random reachable poses vs the real workspace's enclosure.
+    const auto bb = reachable.bbox();
+    const double tol = 1e-7 * std::hypot(bb.width(), bb.height());
+    const testing_bodies::Classifier inner(real.real.inner, tol), outer(real.real.outer, tol);
+    std::mt19937 gen(5);
+    std::uniform_real_distribution<double> x(bb.min.x, bb.max.x), y(bb.min.y, bb.max.y);
+    int tested = 0, in = 0, out = 0;
+    while (tested < 4000) {
+      const geometry::Point p{x(gen), y(gen)};
+      const auto check = bodies::check_pose(*mech.bodies, p);
+      if (!check.reachable) continue;
+      ++tested;
+      if (inner(p) == testing_bodies::Side::inside) {
+        ++in;
+        EXPECT_FALSE(check.collides()) << stem << " (" << p.x << ", " << p.y << ")";
+      } else if (outer(p) == testing_bodies::Side::outside) {
+        ++out;
+        EXPECT_TRUE(check.collides()) << stem << " (" << p.x << ", " << p.y << ")";
+      }
+    }
+    std::printf("[ brute force ] %s: %d poses: %d certainly real and collision-free, %d certainly colliding, %d undecided\n",
+                stem, tested, in, out, tested - in - out);
+    EXPECT_GT(in, 1000) << stem;
+    EXPECT_GT(out, 500) << stem;
+  }
+}
+
+}  // namespace
