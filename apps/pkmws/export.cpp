@@ -13,6 +13,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     std::string file, format, out;
     double tolerance = 0.0;
     bool bare = false;
+    bool real = false;
   };
   auto a = std::make_shared<Args>();
   sub->add_option("FILE", a->file, "Mechanism file (JSON)")->required();
@@ -22,15 +23,23 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
                   "Max deviation of polylines (wkt, geojson) in the file's unit; "
                   "default 1e-6 of the bounding-box diagonal");
   sub->add_flag("--bare", a->bare, "svg: the boundary only, without axes and mechanism");
+  sub->add_flag("--real", a->real,
+                "Files with bodies: export the real workspace's inner enclosure (certainly reachable "
+                "without collision) instead of the computed workspace");
   commands.push_back({sub, [a] {
     const io::ExportFormat format = io::parse_export_format(a->format);
     if (a->tolerance < 0.0 || !std::isfinite(a->tolerance)) {
       throw io::InputError("--tolerance: must be a positive length");
     }
     const io::MechanismFile mech = io::load_mechanism(a->file);
-    const geometry::Region region = workspace_of(mech);
+    geometry::Region region = workspace_of(mech);
     if (region.empty()) {
       throw io::InputError(a->file + ": the workspace is empty (impossible geometry): nothing to export");
+    }
+    if (a->real) {
+      if (!mech.bodies) throw io::InputError(a->file + ": --real needs `bodies` in the file (SPEC §3.2)");
+      region = real_workspace_of(mech, region, 7).real.inner;
+      if (region.empty()) throw io::InputError(a->file + ": the real workspace is empty: nothing to export");
     }
     io::ExportOptions options;
     options.units = mech.units;
@@ -47,7 +56,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
           std::snprintf(caption, sizeof caption, "exact workspace area = %.10g %s", region.area(),
                         area_unit(mech).c_str());
           figure.caption = caption;
-          if (mech.bodies) {
+          if (mech.bodies && !a->real) {
             // SPEC §3.2: computed workspace (filled), interference regions shaded and
             // labelled by pair, the real workspace outlined in black (seed 000 figs. 5-11).
             const auto real = real_workspace_of(mech, region, 7);

@@ -15,6 +15,8 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -115,6 +117,16 @@ TEST(BodiesCli, ExportDrawsInterferenceAndRealOutline) {
   EXPECT_NE(svg.find("real workspace"), std::string::npos);
   EXPECT_NE(svg.find("stroke=\"black\""), std::string::npos);
   EXPECT_NE(svg.find("fill-opacity=\"0.4"), std::string::npos);
+  // --real: the real workspace's inner enclosure, e.g. as WKT; needs bodies.
+  const fs::path wkt = fs::temp_directory_path() / ("pkmws-bodies-real-" + std::to_string(::getpid()) + ".wkt");
+  auto w = run("export " + dataset("machine_moma_m5") + " -f wkt --real -o " + wkt.string());
+  ASSERT_EQ(w.status, 0) << w.err;
+  EXPECT_EQ(slurp(wkt).rfind("MULTIPOLYGON", 0), 0u);
+  fs::remove(wkt);
+  w = run("export " + dataset("moma_m5_gp5_gm5_l195") + " -f wkt --real -o " + wkt.string());
+  EXPECT_EQ(w.status, 2);
+  EXPECT_NE(w.err.find("--real needs `bodies`"), std::string::npos);
+  EXPECT_FALSE(fs::exists(wkt));
 }
 
 // Every bundled machine: the certified regions against the pose-by-pose test.
@@ -132,6 +144,10 @@ TEST(BodiesMachines, EveryRegionAgreesWithThePoseTest) {
     const auto bb = reachable.bbox();
     const double tol = 1e-7 * std::hypot(bb.width(), bb.height());
     const testing_bodies::Classifier inner(real.real.inner, tol), outer(real.real.outer, tol);
+    std::vector<std::pair<testing_bodies::Classifier, testing_bodies::Classifier>> pairs;
+    for (const auto& i : real.interference) pairs.emplace_back(testing_bodies::Classifier(i.region.inner, tol),
+                                                               testing_bodies::Classifier(i.region.outer, tol));
+    int pair_in = 0, pair_out = 0;
     std::mt19937 gen(5);
     std::uniform_real_distribution<double> x(bb.min.x, bb.max.x), y(bb.min.y, bb.max.y);
     int tested = 0, in = 0, out = 0;
@@ -140,6 +156,21 @@ TEST(BodiesMachines, EveryRegionAgreesWithThePoseTest) {
       const auto check = bodies::check_pose(*mech.bodies, p);
       if (!check.reachable) continue;
       ++tested;
+      // Each pair's region: inner ⇒ that pair collides; outside outer ⇒ it does not.
+      for (std::size_t k = 0; k < real.interference.size(); ++k) {
+        const auto& i = real.interference[k];
+        bool collides = false;
+        for (const auto& c : check.contacts) {
+          if (c.a == i.a && c.b == i.b && c.kind == i.kind) collides = c.collides;
+        }
+        if (pairs[k].first(p) == testing_bodies::Side::inside) {
+          ++pair_in;
+          EXPECT_TRUE(collides) << stem << " " << i.a << " / " << i.b << " (" << p.x << ", " << p.y << ")";
+        } else if (pairs[k].second(p) == testing_bodies::Side::outside) {
+          ++pair_out;
+          EXPECT_FALSE(collides) << stem << " " << i.a << " / " << i.b << " (" << p.x << ", " << p.y << ")";
+        }
+      }
       if (inner(p) == testing_bodies::Side::inside) {
         ++in;
         EXPECT_FALSE(check.collides()) << stem << " (" << p.x << ", " << p.y << ")";
@@ -148,8 +179,9 @@ TEST(BodiesMachines, EveryRegionAgreesWithThePoseTest) {
         EXPECT_TRUE(check.collides()) << stem << " (" << p.x << ", " << p.y << ")";
       }
     }
-    std::printf("[ brute force ] %s: %d poses: %d certainly real and collision-free, %d certainly colliding, %d undecided\n",
-                stem, tested, in, out, tested - in - out);
+    std::printf("[ brute force ] %s: %d poses: %d certainly real and collision-free, %d certainly colliding, %d undecided;"
+                " per pair: %d certainly-colliding and %d certainly-clear checks agreed\n",
+                stem, tested, in, out, tested - in - out, pair_in, pair_out);
     EXPECT_GT(in, 1000) << stem;
     EXPECT_GT(out, 500) << stem;
   }
