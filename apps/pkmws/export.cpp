@@ -56,6 +56,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
           std::snprintf(caption, sizeof caption, "exact workspace area = %.10g %s", region.area(),
                         area_unit(mech).c_str());
           figure.caption = caption;
+          mechanisms::Pose pose = sample_pose(mech, region);
           if (mech.bodies && !a->real) {
             // SPEC §3.2: computed workspace (filled), interference regions shaded and
             // labelled by pair, the real workspace outlined in black (seed 000 figs. 5-11).
@@ -66,8 +67,10 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
                           region.area(), area_unit(mech).c_str(), real.real.area_estimate(), area_unit(mech).c_str(),
                           real.real.method().c_str(), real.real.area_lower, real.real.area_upper);
             figure.caption = caption;
+            // Draw the mechanism at a collision-free pose.
+            if (!real.real.inner.empty()) pose = sample_pose(mech, real.real.inner);
           }
-          content = io::workspace_figure(mech, region, sample_pose(mech, region), figure);
+          content = io::workspace_figure(mech, region, pose, figure);
         }
         break;
       case io::ExportFormat::dxf: content = io::to_dxf(region, options); break;
