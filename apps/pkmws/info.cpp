@@ -1,5 +1,5 @@
 // pkmws info FILE: the parsed mechanism.
-#include "cli.hpp"
+#include "bodies_cli.hpp"
 
 namespace pkmws::cli {
 
@@ -18,6 +18,15 @@ void add_info(CLI::App& app, std::vector<Command>& commands) {
     out["derived"] = Json{{"dof", mech.model->dof()},
                           {"joints", joints},
                           {"bounds", {{"min", {b.min.x, b.min.y}}, {"max", {b.max.x, b.max.y}}}}};
+    if (mech.bodies) {
+      // SPEC §3.2: the pairs checked for collision (joined and allowed pairs excluded).
+      const auto& m = mech.bodies->model();
+      Json pairs = Json::array();
+      for (const auto& p : m.pairs()) {
+        pairs.push_back({m.parts[static_cast<std::size_t>(p.a)].name, m.parts[static_cast<std::size_t>(p.b)].name});
+      }
+      out["derived"]["collision_pairs"] = pairs;
+    }
     print_json(out);
     return 0;
   }});
