@@ -86,6 +86,19 @@ TEST(BodiesCli, ExplainNamesTheCollidingParts) {
   EXPECT_EQ(r.status, 2);
 }
 
+TEST(BodiesCli, InfoListsTheCheckedPairs) {
+  // MOMA machine: 7 parts; joined pairs (platform-rods, rods, rod-own slider, slider-own housing),
+  // allowed rod-own housing and the fixed pair housing1-housing2 are not checked: 11 remain.
+  const auto r = run("info " + dataset("machine_moma_m1"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto pairs = json::parse(r.out)["derived"]["collision_pairs"];
+  ASSERT_EQ(pairs.size(), 11u);
+  for (const auto& p : pairs) {
+    EXPECT_FALSE(p[0] == "rod1" && p[1] == "housing1");
+    EXPECT_FALSE(p[0] == "housing1" && p[1] == "housing2");
+  }
+}
+
 TEST(BodiesCli, AreaReportsReachableAndRealWithBounds) {
   const auto r = run("area " + dataset("machine_moma_m1") + " --json");
   ASSERT_EQ(r.status, 0) << r.err;
