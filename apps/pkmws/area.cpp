@@ -22,13 +22,32 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
                            "(the certified level-set regions are a later milestone); "
                            "remove `criteria` limits to get the reachable workspace");
     }
-    const geometry::Region region = workspace_of(mech);
+    const certified::CertifiedRegion enclosure = workspace_enclosure_of(mech);
+    // Exact: the region itself. Certified: the outer enclosure's components
+    // (every point of the true workspace is in one of them).
+    const geometry::Region& region = enclosure.exact ? enclosure.inner : enclosure.outer;
     if (region.empty()) {
       throw io::InputError(*file + ": the workspace is empty (impossible geometry: the legs cannot meet)");
     }
     const double min_area = io::effective_min_area(region, {});
     Json report = region_report(region, min_area);
-    const double area = report["area"];
+    double area = report["area"];
+    report["name"] = mech.name;
+    report["mechanism"] = mech.mechanism;
+    report["units"] = mech.units;
+    report["method"] = enclosure.method();
+    if (enclosure.exact) {
+      // Exact boundary: the bounds are the double rounding of Green's theorem.
+      const double rounding = 64 * std::numeric_limits<double>::epsilon() * area;
+      report["area_lower"] = area - rounding;
+      report["area_upper"] = area + rounding;
+    } else {
+      area = enclosure.area_estimate();
+      report["area"] = area;
+      report["area_lower"] = enclosure.area_lower;
+      report["area_upper"] = enclosure.area_upper;
+      report["components_of"] = "outer enclosure";
+    }
     // SPEC §3.2: with bodies, the real workspace = reachable − ∪ interference.
     std::optional<bodies::RealWorkspace> real;
     if (mech.bodies) {
@@ -36,22 +55,20 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
       report.update(real_workspace_json(*real));
     }
     const double time_ms = elapsed_ms(start);
-    report["name"] = mech.name;
-    report["mechanism"] = mech.mechanism;
-    report["units"] = mech.units;
-    report["method"] = "exact";
-    // Exact boundary: the bounds are the double rounding of Green's theorem.
-    const double rounding = 64 * std::numeric_limits<double>::epsilon() * area;
-    report["area_lower"] = area - rounding;
-    report["area_upper"] = area + rounding;
     report["time_ms"] = time_ms;
     if (*json) {
       print_json(report);
     } else {
       std::printf("%s (%s)\n", mech.name.c_str(), mech.mechanism.c_str());
-      std::printf("area       %.15g %s  (exact, %zu component%s)\n", area,
-                  area_unit(mech).c_str(), report["components"].size(),
-                  report["components"].size() == 1 ? "" : "s");
+      if (enclosure.exact) {
+        std::printf("area       %.15g %s  (exact, %zu component%s)\n", area, area_unit(mech).c_str(),
+                    report["components"].size(), report["components"].size() == 1 ? "" : "s");
+      } else {
+        std::printf("area       %.10g %s  (certified: %.10g <= area <= %.10g, width %.2g of the area)\n", area,
+                    area_unit(mech).c_str(), enclosure.area_lower, enclosure.area_upper,
+                    enclosure.width() / area);
+        std::printf("           components of the outer enclosure: %zu\n", report["components"].size());
+      }
       int k = 0;
       for (const auto& c : report["components"]) {
         std::printf("  [%d] area %.15g, perimeter %.10g, centroid (%.6g, %.6g), "

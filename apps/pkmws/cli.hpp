@@ -45,6 +45,9 @@ double parse_number(const std::string& text, const std::string& what);
 /// The file's exact workspace, or throws io::InputError when the mechanism has
 /// none (e.g. a lone Pi-joint) with the mechanism's reason.
 geometry::Region workspace_of(const io::MechanismFile& file);
+/// The workspace as an enclosure (exact, or certified where the boundary is
+/// not made of arcs and segments); errors become InputError with the path.
+certified::CertifiedRegion workspace_enclosure_of(const io::MechanismFile& file);
 /// A pose inside the workspace for drawing the mechanism (largest component's
 /// centroid when inside, else the centre of its largest inscribed circle).
 mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Region& region);

@@ -31,6 +31,14 @@ geometry::Region workspace_of(const io::MechanismFile& file) {
   }
 }
 
+certified::CertifiedRegion workspace_enclosure_of(const io::MechanismFile& file) {
+  try {
+    return file.model->workspace_enclosure();
+  } catch (const std::exception& e) {
+    throw io::InputError(file.path + ": " + e.what());
+  }
+}
+
 std::string area_unit(const io::MechanismFile& file) { return file.units + "²"; }
 
 namespace {

@@ -153,4 +153,39 @@ TEST(CertifiedRegion, BoxesRegionMergesRuns) {
   EXPECT_TRUE(pkmws::certified::boxes_region({}).empty());
 }
 
+TEST(CertifiedRegion, BoxesRegionHandlesPinchesHolesAndIslands) {
+  // Two squares touching at a corner (CGAL may keep them as one polygon
+  // pinched at the vertex; the point set is what matters).
+  const auto pinch = pkmws::certified::boxes_region({box(0, 0, 1, 1), box(1, 1, 2, 2)});
+  EXPECT_NEAR(pinch.area(), 2.0, 1e-14);
+  EXPECT_TRUE(pinch.contains({0.5, 0.5}));
+  EXPECT_TRUE(pinch.contains({1.5, 1.5}));
+  EXPECT_FALSE(pinch.contains({0.5, 1.5}));
+  // A ring of 8 unit cells around a hole (3x3 minus the centre).
+  std::vector<Box> ring;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      if (i != 1 || j != 1) ring.push_back(box(i, j, i + 1, j + 1));
+  const auto r = pkmws::certified::boxes_region(ring);
+  EXPECT_NEAR(r.area(), 8.0, 1e-14);
+  EXPECT_FALSE(r.contains({1.5, 1.5}));
+  EXPECT_TRUE(r.contains({0.5, 1.5}));
+  // 5x5 frame with a 1x1 island in its 3x3 hole: area 16 + 1.
+  std::vector<Box> framed;
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 5; ++i)
+      if (i == 0 || j == 0 || i == 4 || j == 4 || (i == 2 && j == 2)) framed.push_back(box(i, j, i + 1, j + 1));
+  const auto f = pkmws::certified::boxes_region(framed);
+  EXPECT_NEAR(f.area(), 17.0, 1e-14);
+  EXPECT_TRUE(f.contains({2.5, 2.5}));
+  EXPECT_FALSE(f.contains({1.5, 2.5}));
+  // C-shape whose ends, cells (0,1) and (1,2), touch at the corner (1,2): the
+  // boundary traced turning left revisits that vertex and is split there.
+  std::vector<Box> c{box(0, 0, 1, 1), box(1, 0, 2, 1), box(2, 0, 3, 1), box(2, 1, 3, 2), box(2, 2, 3, 3),
+                     box(1, 2, 2, 3), box(0, 1, 1, 2)};
+  const auto cs = pkmws::certified::boxes_region(c);
+  EXPECT_NEAR(cs.area(), 7.0, 1e-14);
+  EXPECT_FALSE(cs.contains({1.5, 1.5}));
+}
+
 }  // namespace

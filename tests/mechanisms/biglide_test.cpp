@@ -318,6 +318,44 @@ TEST(BiglideWorkspace, RealSchemeExplainsWhyThereIsNoExactRegion) {
   }
 }
 
+TEST(BiglideWorkspace, RealSchemeIsCertified) {
+  // inner ⊆ true ⊆ outer: points in inner are reachable, points outside outer
+  // are not (random poses against the IK test); the bounds contain a dense
+  // grid estimate and their width halves with each quadtree level.
+  const auto f = io::load_mechanism(dataset("biglide_real"));
+  const auto coarse = f.model->workspace_enclosure(5);
+  const auto fine = f.model->workspace_enclosure(7);
+  EXPECT_FALSE(fine.exact);
+  EXPECT_EQ(fine.method(), "certified");
+  EXPECT_LE(coarse.area_lower, fine.area_lower + 1e-6);
+  EXPECT_GE(coarse.area_upper, fine.area_upper - 1e-6);
+  EXPECT_NEAR(fine.width() / coarse.width(), 0.25, 0.06);
+  const auto box = f.model->bounds();
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> ux(box.min.x, box.max.x), uy(box.min.y, box.max.y);
+  int in_inner = 0, out_outer = 0;
+  for (int n = 0; n < 3000; ++n) {
+    const Point p{ux(rng), uy(rng)};
+    const bool reach = f.model->reachable({p.x, p.y, 0});
+    if (fine.inner.contains(p)) { EXPECT_TRUE(reach) << p.x << " " << p.y; ++in_inner; }
+    if (!fine.outer.contains(p)) { EXPECT_FALSE(reach) << p.x << " " << p.y; ++out_outer; }
+  }
+  EXPECT_GT(in_inner, 400);
+  EXPECT_GT(out_outer, 400);
+  // Dense grid estimate (1000^2 cell centres) inside the bounds widened by its own
+  // error (boundary cells ~ perimeter x cell size).
+  const int n = 1000;
+  const double dx = box.width() / n, dy = box.height() / n;
+  long count = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      count += f.model->reachable({box.min.x + (i + 0.5) * dx, box.min.y + (j + 0.5) * dy, 0}) ? 1 : 0;
+  const double grid = static_cast<double>(count) * dx * dy;
+  const double grid_error = fine.outer.components().front().perimeter * std::max(dx, dy);
+  EXPECT_GE(grid, fine.area_lower - grid_error);
+  EXPECT_LE(grid, fine.area_upper + grid_error);
+}
+
 TEST(BiglideFile, ErrorsNameTheField) {
   const nlohmann::json doc = {{"name", "t"},        {"mechanism", "biglide"}, {"units", "mm"},
                               {"half_width", 500},  {"rods", {940, 940}},     {"stroke", {{0, 1600}, {0, 1600}}}};

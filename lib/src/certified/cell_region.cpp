@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <limits>
 #include <tuple>
+#include <unordered_map>
+#include <utility>
 
 #include "detail/parallel.hpp"
 #include "pkmws/geometry/primitives.hpp"
@@ -48,25 +51,6 @@ std::vector<Box> merge_runs(std::vector<Box> boxes) {
       Box& last = out.back();
       if (last.min.y == b.min.y && last.max.y == b.max.y && last.max.x == b.min.x) {
         last.max.x = b.max.x;
-        continue;
-      }
-    }
-    out.push_back(b);
-  }
-  return out;
-}
-
-// Then vertical: runs with identical columns that touch become one box.
-std::vector<Box> merge_columns(std::vector<Box> boxes) {
-  std::sort(boxes.begin(), boxes.end(), [](const Box& a, const Box& b) {
-    return std::tie(a.min.x, a.max.x, a.min.y) < std::tie(b.min.x, b.max.x, b.min.y);
-  });
-  std::vector<Box> out;
-  for (const Box& b : boxes) {
-    if (!out.empty()) {
-      Box& last = out.back();
-      if (last.min.x == b.min.x && last.max.x == b.max.x && last.max.y == b.min.y) {
-        last.max.y = b.max.y;
         continue;
       }
     }
@@ -131,13 +115,174 @@ CellCover cover(const CellTest& test, const CellOptions& options) {
   return result;
 }
 
+namespace {
+
+// The union of boxes as rectilinear loops, without a general Boolean sweep:
+// the boxes' coordinates are compressed to a lattice, each lattice row holds
+// the merged x-intervals it is covered by, and the boundary is the set of
+// directed lattice edges with the union on their left: vertical edges at the
+// ends of every row interval, horizontal edges where a row line separates
+// covered from uncovered. Edges are chained turning left first (diagonally
+// touching cells stay apart), loops that still revisit a vertex are split
+// there, and the union is the even-odd combination of the loops.
+struct LatticeEdge {
+  int x0, y0, x1, y1;
+};
+
+using Interval = std::pair<int, int>;
+
+std::vector<Interval> merge_intervals(std::vector<Interval> v) {
+  std::sort(v.begin(), v.end());
+  std::vector<Interval> out;
+  for (const Interval& i : v) {
+    if (!out.empty() && i.first <= out.back().second) {
+      out.back().second = std::max(out.back().second, i.second);
+    } else {
+      out.push_back(i);
+    }
+  }
+  return out;
+}
+
+bool covered(const std::vector<Interval>& row, int a, int b) {
+  // Is the lattice segment [a, b] (inside one elementary piece) covered?
+  auto it = std::upper_bound(row.begin(), row.end(), Interval{a, std::numeric_limits<int>::max()});
+  if (it == row.begin()) return false;
+  --it;
+  return it->first <= a && b <= it->second;
+}
+
+std::vector<std::vector<std::pair<int, int>>> lattice_loops(const std::vector<std::vector<Interval>>& rows) {
+  const int n_rows = static_cast<int>(rows.size());
+  std::vector<LatticeEdge> edges;
+  for (int j = 0; j < n_rows; ++j) {
+    for (const Interval& i : rows[static_cast<std::size_t>(j)]) {
+      edges.push_back({i.first, j + 1, i.first, j});    // left side, downwards
+      edges.push_back({i.second, j, i.second, j + 1});  // right side, upwards
+    }
+  }
+  const std::vector<Interval> none;
+  for (int j = 0; j <= n_rows; ++j) {
+    const auto& below = j > 0 ? rows[static_cast<std::size_t>(j - 1)] : none;
+    const auto& above = j < n_rows ? rows[static_cast<std::size_t>(j)] : none;
+    std::vector<int> cuts;
+    for (const Interval& i : below) { cuts.push_back(i.first); cuts.push_back(i.second); }
+    for (const Interval& i : above) { cuts.push_back(i.first); cuts.push_back(i.second); }
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      const int a = cuts[k], b = cuts[k + 1];
+      const bool up = covered(above, a, b), down = covered(below, a, b);
+      if (up && !down) edges.push_back({a, j, b, j});   // bottom of the union, +x
+      if (down && !up) edges.push_back({b, j, a, j});   // top of the union, -x
+    }
+  }
+  auto key = [](int x, int y) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) << 32) | static_cast<std::uint32_t>(y); };
+  std::unordered_multimap<std::uint64_t, std::size_t> outgoing;
+  outgoing.reserve(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e) outgoing.insert({key(edges[e].x0, edges[e].y0), e});
+  auto dir = [](const LatticeEdge& e) {
+    return std::pair<int, int>{(e.x1 > e.x0) - (e.x1 < e.x0), (e.y1 > e.y0) - (e.y1 < e.y0)};
+  };
+  std::vector<bool> used(edges.size(), false);
+  std::vector<std::vector<std::pair<int, int>>> loops;
+  for (std::size_t first = 0; first < edges.size(); ++first) {
+    if (used[first]) continue;
+    std::vector<std::pair<int, int>> seq;
+    std::size_t cur = first;
+    used[cur] = true;
+    for (;;) {
+      seq.push_back({edges[cur].x0, edges[cur].y0});
+      const auto [dx, dy] = dir(edges[cur]);
+      // Preference: left turn (-dy, dx), straight, right turn (dy, -dx).
+      const std::pair<int, int> prefs[3] = {{-dy, dx}, {dx, dy}, {dy, -dx}};
+      std::size_t next = edges.size();
+      int best = 4;
+      auto [lo, hi] = outgoing.equal_range(key(edges[cur].x1, edges[cur].y1));
+      for (auto it = lo; it != hi; ++it) {
+        const std::size_t cand = it->second;
+        if (used[cand] && cand != first) continue;
+        const auto d = dir(edges[cand]);
+        for (int p = 0; p < 3; ++p) {
+          if (d == prefs[p] && p < best) { best = p; next = cand; }
+        }
+      }
+      if (next == edges.size() || next == first) break;
+      used[next] = true;
+      cur = next;
+    }
+    // Split at repeated vertices: each piece is a simple loop.
+    std::vector<std::pair<int, int>> stack;
+    std::unordered_map<std::uint64_t, std::size_t> at;
+    auto emit = [&](std::vector<std::pair<int, int>> loop) {
+      // Drop collinear vertices.
+      std::vector<std::pair<int, int>> out;
+      const std::size_t n = loop.size();
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto& p = loop[(k + n - 1) % n];
+        const auto& v = loop[k];
+        const auto& q = loop[(k + 1) % n];
+        const long cross = static_cast<long>(v.first - p.first) * (q.second - v.second) -
+                           static_cast<long>(v.second - p.second) * (q.first - v.first);
+        if (cross != 0) out.push_back(v);
+      }
+      if (out.size() >= 4) loops.push_back(std::move(out));
+    };
+    for (const auto& v : seq) {
+      const std::uint64_t k = key(v.first, v.second);
+      auto found = at.find(k);
+      if (found != at.end()) {
+        const std::size_t pos = found->second;
+        std::vector<std::pair<int, int>> piece(stack.begin() + static_cast<std::ptrdiff_t>(pos), stack.end());
+        for (std::size_t r = pos; r < stack.size(); ++r) at.erase(key(stack[r].first, stack[r].second));
+        stack.resize(pos);
+        emit(std::move(piece));
+      }
+      at[k] = stack.size();
+      stack.push_back(v);
+    }
+    emit(std::move(stack));
+  }
+  return loops;
+}
+
+}  // namespace
+
 Region boxes_region(const std::vector<Box>& boxes) {
-  std::vector<Region> parts;
-  parts.reserve(boxes.size());
-  for (const Box& b : merge_columns(merge_runs(boxes)))
-    if (b.width() > 0.0 && b.height() > 0.0) parts.push_back(geometry::rectangle(b));
-  if (parts.empty()) return Region{};
-  return Region::unite_all(parts);
+  std::vector<double> xs, ys;
+  std::vector<Box> kept;
+  for (const Box& b : boxes) {
+    if (!(b.width() > 0.0 && b.height() > 0.0)) continue;
+    kept.push_back(b);
+    xs.push_back(b.min.x);
+    xs.push_back(b.max.x);
+    ys.push_back(b.min.y);
+    ys.push_back(b.max.y);
+  }
+  if (kept.empty()) return Region{};
+  std::sort(xs.begin(), xs.end());
+  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  std::sort(ys.begin(), ys.end());
+  ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+  auto index = [](const std::vector<double>& v, double x) {
+    return static_cast<int>(std::lower_bound(v.begin(), v.end(), x) - v.begin());
+  };
+  std::vector<std::vector<Interval>> rows(ys.size() - 1);
+  for (const Box& b : kept) {
+    const int i0 = index(xs, b.min.x), i1 = index(xs, b.max.x);
+    const int j0 = index(ys, b.min.y), j1 = index(ys, b.max.y);
+    for (int j = j0; j < j1; ++j) rows[static_cast<std::size_t>(j)].push_back({i0, i1});
+  }
+  for (auto& r : rows) r = merge_intervals(std::move(r));
+  std::vector<Region> polygons;
+  for (const auto& loop : lattice_loops(rows)) {
+    std::vector<geometry::Point> pts;
+    pts.reserve(loop.size());
+    for (const auto& [i, j] : loop) pts.push_back({xs[static_cast<std::size_t>(i)], ys[static_cast<std::size_t>(j)]});
+    polygons.push_back(geometry::polygon(pts));
+  }
+  if (polygons.size() == 1) return polygons.front();
+  return Region::symmetric_difference_all(polygons);
 }
 
 namespace {

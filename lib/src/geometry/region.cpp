@@ -2,11 +2,13 @@
 // over circle-segment curves (CGAL General_polygon_set_2). One of the two
 // translation units that include CGAL's Boolean-set headers.
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <numbers>
 #include <stdexcept>
 
 #include "detail/cgal_kernel.hpp"
+#include "pkmws/geometry/inscribed.hpp"
 
 namespace pkmws::geometry {
 
@@ -256,6 +258,17 @@ Region Region::unite_all(const std::vector<Region>& regions) {
   return detail::from_set(set);
 }
 
+Region Region::symmetric_difference_all(const std::vector<Region>& regions) {
+  std::vector<detail::PolygonWithHoles> all;
+  for (const Region& r : regions) {
+    all.insert(all.end(), r.impl_->pieces.begin(), r.impl_->pieces.end());
+  }
+  if (all.empty()) return Region();
+  detail::PolygonSet set;
+  set.symmetric_difference(all.begin(), all.end());
+  return detail::from_set(set);
+}
+
 double Region::area() const {
   double a = 0.0;
   for (const Component& c : detail::cached_components(*impl_)) a += c.area;
@@ -270,6 +283,21 @@ Box Region::bbox() const {
 
 bool Region::contains(Point p) const {
   if (empty()) return false;
+  // Fast path on the cached double boundary (every curve within ~1e-15 of
+  // the exact one): a point farther than a safe margin from every loop is
+  // decided by even-odd counting; near the boundary the exact set decides.
+  const auto& comps = detail::cached_components(*impl_);
+  Box box;
+  for (const Component& c : comps) box.expand(c.bbox);
+  const double margin = 1e-9 * std::max({box.width(), box.height(), std::abs(p.x), std::abs(p.y), 1e-300});
+  if (std::isfinite(p.x) && std::isfinite(p.y)) {
+    bool near = false, in = false;
+    for (const Component& c : comps) {
+      if (distance_to_boundary(c, p) <= margin) { near = true; break; }
+      in = in || inside(c, p);
+    }
+    if (!near) return in;
+  }
   const detail::PolygonSet set = detail::to_set(*impl_);
   const detail::OnePoint q(detail::CoordNT(detail::FT(p.x)), detail::CoordNT(detail::FT(p.y)));
   return set.oriented_side(q) != CGAL::ON_NEGATIVE_SIDE;

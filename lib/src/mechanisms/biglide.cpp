@@ -4,6 +4,8 @@
 #include "mechanisms/common.hpp"
 #include "pkmws/mechanisms/biglide.hpp"
 
+#include <boost/numeric/interval.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -375,6 +377,54 @@ geometry::Region Biglide::workspace() const {
     ws = i == 0 ? band : ws.intersect(band);
   }
   return ws;
+}
+
+certified::CertifiedRegion Biglide::workspace_enclosure(int max_depth) const {
+  if (!real_scheme()) return certified::from_exact(workspace());
+  using I = boost::numeric::interval<double>;
+  const double b = params_.half_width, l2 = params_.rods[1], l3 = tool_distance();
+  const auto& st1 = params_.strokes[0];
+  const auto& st2 = params_.strokes[1];
+  const double bb = static_cast<double>(paper_branch);
+  // J = S_1 + M (T - S_1), M = (l_1 / l_3) R(γ); with T - S_1 = (-b1 w1, h1):
+  //   J_x = x + b1 w1 (1 - M00) + M01 h1,   J_y = -B - b1 w1 M10 + M11 h1.
+  const double k = params_.rods[0] / l3, c = std::cos(gamma()), s = std::sin(gamma());
+  const double m00 = k * c, m01 = -k * s, m10 = k * s, m11 = k * c;
+  // Leg 1 exactly: T within l_3 of slider 1, ahead of it (the paper's branch).
+  const geometry::Region band1 = geometry::band(slider(0, st1[0]), 0.0, st1[1] - st1[0], l3, -paper_branch);
+  // The cell test: for every T in the box, is the chain closed with q_2 in its
+  // stroke? (Leg 1's own conditions are exact in band1; they are re-checked
+  // here only to bound w1.)
+  auto test = [=](const geometry::Box& box) {
+    const I x(box.min.x, box.max.x), y(box.min.y, box.max.y);
+    const I h1 = y + b;
+    if (h1.lower() > l3 || h1.upper() < -l3) return certified::CellState::outside;
+    bool partial = !(h1.lower() >= -l3 && h1.upper() <= l3);
+    const I h1c = boost::numeric::intersect(h1, I(-l3, l3));
+    I r1 = I(l3) * I(l3) - boost::numeric::square(h1c);
+    r1 = I(std::max(0.0, r1.lower()), std::max(0.0, r1.upper()));
+    const I w1 = boost::numeric::sqrt(r1);
+    const I q1 = x + bb * w1;
+    if (q1.upper() < st1[0] || q1.lower() > st1[1]) return certified::CellState::outside;
+    const I jx = x + (bb * (1.0 - m00)) * w1 + m01 * h1c;
+    const I jy = -b - (bb * m10) * w1 + m11 * h1c;
+    const I h2 = b - jy;
+    if (h2.lower() > l2 || h2.upper() < -l2) return certified::CellState::outside;
+    partial = partial || !(h2.lower() >= -l2 && h2.upper() <= l2);
+    const I h2c = boost::numeric::intersect(h2, I(-l2, l2));
+    I r2 = I(l2) * I(l2) - boost::numeric::square(h2c);
+    r2 = I(std::max(0.0, r2.lower()), std::max(0.0, r2.upper()));
+    const I q2 = jx + bb * boost::numeric::sqrt(r2);
+    if (q2.upper() < st2[0] || q2.lower() > st2[1]) return certified::CellState::outside;
+    const bool inside = !partial && q1.lower() >= st1[0] && q1.upper() <= st1[1] && q2.lower() >= st2[0] &&
+                        q2.upper() <= st2[1];
+    return inside ? certified::CellState::inside : certified::CellState::undecided;
+  };
+  certified::CellOptions options;
+  options.window = bounds();
+  options.base = 16;
+  options.max_depth = max_depth;
+  return certified::certify(test, band1, options);
 }
 
 bool Biglide::reachable(const Pose& pose) const {

@@ -29,3 +29,11 @@ void set_point_platform_transmission(Evaluation& e, double abs_sin_eps, const Cr
 }
 
 }  // namespace pkmws::mechanisms::detail
+
+namespace pkmws::mechanisms {
+
+certified::CertifiedRegion Mechanism::workspace_enclosure(int /*max_depth*/) const {
+  return certified::from_exact(workspace());
+}
+
+}  // namespace pkmws::mechanisms

@@ -34,6 +34,9 @@ class Region {
   Region symmetric_difference(const Region& other) const;
   /// Union of many regions at once (faster than folding `unite`).
   static Region unite_all(const std::vector<Region>& regions);
+  /// The points covered by an odd number of the regions, in one aggregated
+  /// sweep (for nested, non-crossing loops: the set they bound).
+  static Region symmetric_difference_all(const std::vector<Region>& regions);
 
   /// Area from the exact boundary (Green's theorem per segment and arc).
   double area() const;

@@ -99,6 +99,11 @@ class Biglide final : public Mechanism {
   /// scheme: throws std::runtime_error (its boundary contains coupler curves of
   /// a slider-crank, neither circles nor lines; docs/theory/biglide.md).
   geometry::Region workspace() const override;
+  /// Simplified scheme: exact. Real scheme: certified — the leg-1 band
+  /// (|T - S_1| = l_3 along the stroke) is exact, and a quadtree with an
+  /// interval-arithmetic cell test of the leg-2 chain (J, q_2 within its
+  /// stroke) encloses the coupler-curve parts of the boundary.
+  certified::CertifiedRegion workspace_enclosure(int max_depth = 9) const override;
   bool reachable(const Pose& pose) const override;
   Drawing draw(const Pose& pose) const override;
   geometry::Box bounds() const override;

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pkmws/certified/cell_region.hpp"
 #include "pkmws/geometry/region.hpp"
 #include "pkmws/geometry/types.hpp"
 
@@ -112,6 +113,12 @@ class Mechanism {
 
   /// Exact reachable workspace (for 3-DOF: at the file's constant orientation).
   virtual geometry::Region workspace() const = 0;
+  /// The reachable workspace as an enclosure inner ⊆ true ⊆ outer with area
+  /// bounds. Default: the exact workspace() (inner = outer). Mechanisms whose
+  /// boundary is not made of arcs and segments only override it with a
+  /// certified region; `max_depth` is the quadtree depth below the base grid
+  /// (each level halves the bound width).
+  virtual certified::CertifiedRegion workspace_enclosure(int max_depth = 9) const;
   /// Point-membership test of the reachable workspace in double arithmetic
   /// (the grid baseline's test; SPEC §2.4).
   virtual bool reachable(const Pose& pose) const = 0;
