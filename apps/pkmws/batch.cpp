@@ -47,8 +47,10 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
       Json row{{"file", mech.path}, {"name", mech.name}, {"mechanism", mech.mechanism}};
       const auto start = std::chrono::steady_clock::now();
       geometry::Region region;
+      certified::CertifiedRegion enclosure;
       try {
-        region = mech.model->workspace();
+        enclosure = mech.model->workspace_enclosure();
+        region = enclosure.exact ? enclosure.inner : enclosure.outer;
       } catch (const std::exception& e) {
         row["note"] = e.what();
         std::string links;
@@ -62,12 +64,19 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
               std::string(e.what()) + links + " |\n";
         continue;
       }
-      const double area = region.area();
+      const double area = enclosure.exact ? region.area() : enclosure.area_estimate();
       const double time_ms = elapsed_ms(start);
       const auto comps = region.components(io::effective_min_area(region, {}));
       io::FigureOptions figure;
       figure.title = mech.name;
       figure.caption = "exact workspace area = " + fmt("%.10g", area) + " " + area_unit(mech);
+      if (!enclosure.exact) {
+        figure.caption = "certified workspace area in [" + fmt("%.10g", enclosure.area_lower) + ", " +
+                         fmt("%.10g", enclosure.area_upper) + "] " + area_unit(mech) + " (outer enclosure drawn)";
+        row["area_lower"] = enclosure.area_lower;
+        row["area_upper"] = enclosure.area_upper;
+      }
+      row["method"] = enclosure.method();
       const std::string svg = stem + ".svg";
       io::write_file_atomic(fs::path(a->out) / svg,
                             io::workspace_figure(mech, region, sample_pose(mech, region), figure));

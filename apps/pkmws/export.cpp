@@ -14,6 +14,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     double tolerance = 0.0;
     bool bare = false;
     bool real = false;
+    std::string bound = "outer";
   };
   auto a = std::make_shared<Args>();
   sub->add_option("FILE", a->file, "Mechanism file (JSON)")->required();
@@ -26,13 +27,19 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
   sub->add_flag("--real", a->real,
                 "Files with bodies: export the real workspace's inner enclosure (certainly reachable "
                 "without collision) instead of the computed workspace");
+  sub->add_option("--bound", a->bound,
+                  "Certified workspaces (boundary not made of arcs and segments, e.g. the real-scheme "
+                  "biglide): export the outer enclosure (every reachable point, default) or the inner "
+                  "one (only reachable points)")
+      ->check(CLI::IsMember({"inner", "outer"}));
   commands.push_back({sub, [a] {
     const io::ExportFormat format = io::parse_export_format(a->format);
     if (a->tolerance < 0.0 || !std::isfinite(a->tolerance)) {
       throw io::InputError("--tolerance: must be a positive length");
     }
     const io::MechanismFile mech = io::load_mechanism(a->file);
-    geometry::Region region = workspace_of(mech);
+    const certified::CertifiedRegion enclosure = workspace_enclosure_of(mech);
+    geometry::Region region = enclosure.exact || a->bound == "outer" ? enclosure.outer : enclosure.inner;
     if (region.empty()) {
       throw io::InputError(a->file + ": the workspace is empty (impossible geometry): nothing to export");
     }
@@ -55,6 +62,21 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
           char caption[512];
           std::snprintf(caption, sizeof caption, "exact workspace area = %.10g %s", region.area(),
                         area_unit(mech).c_str());
+          if (!enclosure.exact) {
+            // Certain part filled, the undecided band between the enclosures hatched grey.
+            std::snprintf(caption, sizeof caption,
+                          "certified workspace: %.10g <= area <= %.10g %s (filled: certainly reachable; grey: "
+                          "undecided band of the quadtree)",
+                          enclosure.area_lower, enclosure.area_upper, area_unit(mech).c_str());
+            region = enclosure.inner;
+            io::FigureOptions::Overlay band;
+            band.region = enclosure.outer.subtract(enclosure.inner);
+            band.fill = "#7a7a7a";
+            band.fill_opacity = 0.8;
+            band.stroke = "none";
+            band.legend = "undecided (certified bounds)";
+            figure.overlays.push_back(band);
+          }
           figure.caption = caption;
           mechanisms::Pose pose = sample_pose(mech, region);
           if (mech.bodies && !a->real) {

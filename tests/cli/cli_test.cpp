@@ -248,3 +248,28 @@ TEST_F(Cli, ThreeDofDirectKinematicsGivesEveryAssemblyMode) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(Cli, CertifiedWorkspaceReportsBoundsAndExportsEitherEnclosure) {
+  const auto r = run("area " + dataset("biglide_real.json") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["method"], "certified");
+  const double lo = j["area_lower"], hi = j["area_upper"], area = j["area"];
+  EXPECT_LT(lo, hi);
+  EXPECT_LE(lo, area);
+  EXPECT_LE(area, hi);
+  EXPECT_LT((hi - lo) / area, 1e-3);
+  for (const std::string bound : {"inner", "outer"}) {
+    const auto out = dir_ / (bound + ".csv");
+    const auto e = run("export " + dataset("biglide_real.json") + " -f csv --bound " + bound + " -o " + out.string());
+    ASSERT_EQ(e.status, 0) << e.err;
+    EXPECT_TRUE(fs::exists(out));
+  }
+  expect_bad_input(run("export " + dataset("biglide_real.json") + " -f csv --bound middle -o " +
+                       (dir_ / "x.csv").string()),
+                   "bound");
+}
+
+}  // namespace
