@@ -332,6 +332,51 @@ TEST(ThreeRrp, StripWorkspaceMatchesAnInverseKinematicsGridCount) {
   EXPECT_GT(exact, 0.0);
 }
 
+TEST(ThreeRrp, CrankLimitedStripWorkspaceMatchesAnInverseKinematicsGridCount) {
+  // Cranks limited to a quarter turn each: the strips narrow to the range of
+  // r n_i . u(phi_i) over the allowed angles; still exact.
+  const double side = 140.0, h = side * std::sqrt(3.0) / 2.0;
+  std::array<ThreeRrpChain, 3> c;
+  c[0].base = {0, 0};
+  c[1].base = {side, 0};
+  c[2].base = {side / 2, h};
+  const std::array<double, 3> centre{pi / 4, 3 * pi / 4, -pi / 2};
+  for (std::size_t i = 0; i < 3; ++i) {
+    c[i].crank_length = 25.0;
+    c[i].limits = std::array<double, 2>{centre[i] - pi / 4, centre[i] + pi / 4};
+  }
+  const double r = 40.0 / std::sqrt(3.0);
+  std::array<Point, 3> plat{rot(-pi / 2 - pi / 3, {r, 0}), rot(-pi / 2 + pi / 3, {r, 0}), rot(pi / 2, {r, 0})};
+  const ThreeRrp m(ThreeRrpDrive::crank, c, plat, 0.35);
+  const auto ws = m.workspace();
+  const double exact = ws.area();
+  ASSERT_GT(exact, 0.0);
+  const ThreeRrp unlimited = [&] {
+    auto free = c;
+    for (auto& ch : free) ch.limits.reset();
+    return ThreeRrp(ThreeRrpDrive::crank, free, plat, 0.35);
+  }();
+  EXPECT_LT(exact, unlimited.workspace().area());
+  const auto box = ws.bbox();
+  const int n = 400;
+  const double dx = box.width() / n, dy = box.height() / n;
+  long count = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Pose p{box.min.x + (i + 0.5) * dx, box.min.y + (j + 0.5) * dy, 0.35};
+      // In the workspace iff every chain has some crank angle within its
+      // limits (any working mode per chain).
+      bool in = true;
+      for (int k = 0; k < 3 && in; ++k) {
+        bool any = false;
+        for (const auto& s : m.inverse_chain(k, p)) any = any || m.limit_problem(k, s.joint).empty();
+        in = any;
+      }
+      count += in ? 1 : 0;
+    }
+  EXPECT_NEAR(static_cast<double>(count) * dx * dy, exact, 0.01 * exact);
+}
+
 // ---------------------------------------------------------------------------
 // 3-RPR
 
