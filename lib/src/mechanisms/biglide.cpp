@@ -21,6 +21,7 @@
 namespace pkmws::mechanisms {
 
 using detail::format_number;
+using detail::rotate;
 using detail::mode_label;
 
 namespace {
@@ -32,10 +33,6 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr double singular_tol = 1e-9;
 constexpr int paper_branch = -1;  // eq. 5-8 take the minus roots
 
-Point rotate(Point v, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return {c * v.x - s * v.y, s * v.x + c * v.y};
-}
 
 // sqrt(l² - h²) without cancellation; negative when |h| > l.
 double leg_reach(double l, double h) {

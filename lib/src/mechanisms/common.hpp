@@ -16,6 +16,29 @@ namespace pkmws::mechanisms::detail {
 
 inline constexpr double infinity = std::numeric_limits<double>::infinity();
 
+/// Unit vector at angle a (radians).
+inline Point unit(double a) { return {std::cos(a), std::sin(a)}; }
+/// v rotated counter-clockwise by phi (radians).
+inline Point rotate(Point v, double phi) {
+  const double c = std::cos(phi), s = std::sin(phi);
+  return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+/// Angle in (-pi, pi].
+inline double wrap_pi(double q) {
+  constexpr double two_pi = 2.0 * std::numbers::pi;
+  double r = std::remainder(q, two_pi);
+  if (r <= -std::numbers::pi) r += two_pi;
+  return r;
+}
+/// Angle in [lo, lo + 2 pi).
+inline double wrap_from(double q, double lo) {
+  constexpr double two_pi = 2.0 * std::numbers::pi;
+  double r = std::fmod(q - lo, two_pi);
+  if (r < 0.0) r += two_pi;
+  if (r >= two_pi) r -= two_pi;
+  return lo + r;
+}
+
 /// A value for a one-line reason ("p2 = 212.3 outside stroke [0, 200]").
 inline std::string format_number(double v) {
   char buf[32];

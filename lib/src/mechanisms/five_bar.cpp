@@ -22,6 +22,9 @@
 namespace pkmws::mechanisms {
 
 using detail::format_number;
+using detail::unit;
+using detail::wrap_pi;
+using detail::wrap_from;
 using detail::mode_label;
 
 namespace {
@@ -33,22 +36,8 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 // Relative tolerance of the singularity, working-mode and limit tests.
 constexpr double singular_tol = 1e-9;
 
-Point unit(double q) { return {std::cos(q), std::sin(q)}; }
 
-// Angle in (-pi, pi].
-double wrap_pi(double q) {
-  double r = std::remainder(q, two_pi);
-  if (r <= -pi) r += two_pi;
-  return r;
-}
 
-// Angle in [lo, lo + 2 pi).
-double wrap_from(double q, double lo) {
-  double r = std::fmod(q - lo, two_pi);
-  if (r < 0.0) r += two_pi;
-  if (r >= two_pi) r -= two_pi;
-  return lo + r;
-}
 
 PiJointKinematics pi_kinematics(const FiveBarLeg& leg) { return {leg.proximal, leg.pi_joint->k}; }
 

@@ -33,17 +33,10 @@ constexpr double singular_tol = 1e-9;
 using LD = long double;
 using Poly = std::vector<LD>;  // ascending powers of t
 using detail::format_number;
+using detail::unit;
+using detail::rotate;
+using detail::wrap_pi;
 
-Point unit(double a) { return {std::cos(a), std::sin(a)}; }
-Point rotate(Point v, double phi) {
-  const double c = std::cos(phi), s = std::sin(phi);
-  return {c * v.x - s * v.y, s * v.x + c * v.y};
-}
-double wrap_pi(double q) {
-  double r = std::remainder(q, two_pi);
-  if (r <= -pi) r += two_pi;
-  return r;
-}
 
 Poly padd(const Poly& a, const Poly& b, LD sb = 1.0L) {
   Poly r(std::max(a.size(), b.size()), 0.0L);

@@ -30,25 +30,13 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr double singular_tol = 1e-9;
 
 using detail::format_number;
+using detail::unit;
+using detail::rotate;
+using detail::wrap_pi;
+using detail::wrap_from;
 
-Point unit(double a) { return {std::cos(a), std::sin(a)}; }
-Point rotate(Point v, double phi) {
-  const double c = std::cos(phi), s = std::sin(phi);
-  return {c * v.x - s * v.y, s * v.x + c * v.y};
-}
 
-double wrap_pi(double q) {
-  double r = std::remainder(q, two_pi);
-  if (r <= -pi) r += two_pi;
-  return r;
-}
 
-double wrap_from(double q, double lo) {
-  double r = std::fmod(q - lo, two_pi);
-  if (r < 0.0) r += two_pi;
-  if (r >= two_pi) r -= two_pi;
-  return lo + r;
-}
 
 std::string label(const std::array<int, 3>& sigma) {
   return "(" + std::to_string(sigma[0]) + "," + std::to_string(sigma[1]) + "," + std::to_string(sigma[2]) + ")";
