@@ -58,6 +58,16 @@ bool has_assembly(const std::vector<AssurAssembly>& v, Point origin, double phi,
   return false;
 }
 
+// Area of {p in box : in(p)} counted at the centres of an n x n grid.
+template <class Predicate>
+double grid_area(const pkmws::geometry::Box& box, int n, Predicate in) {
+  const double dx = box.width() / n, dy = box.height() / n;
+  long count = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) count += in(Point{box.min.x + (i + 0.5) * dx, box.min.y + (j + 0.5) * dy}) ? 1 : 0;
+  return static_cast<double>(count) * dx * dy;
+}
+
 // ---------------------------------------------------------------------------
 // The Assur group: the paper's elimination against the closed form.
 
@@ -317,17 +327,10 @@ TEST(ThreeRrp, StripWorkspaceMatchesAnInverseKinematicsGridCount) {
   const ThreeRrp m = example_prp();
   const auto ws = m.workspace();
   const double exact = ws.area();
-  const auto box = ws.bbox();
-  const int n = 400;
-  const double dx = box.width() / n, dy = box.height() / n;
-  long count = 0;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const Pose p{box.min.x + (i + 0.5) * dx, box.min.y + (j + 0.5) * dy, m.orientation()};
-      const auto sols = m.inverse(p);
-      count += std::any_of(sols.begin(), sols.end(), [](const JointSolution& s) { return s.valid; }) ? 1 : 0;
-    }
-  const double grid = static_cast<double>(count) * dx * dy;
+  const double grid = grid_area(ws.bbox(), 400, [&](Point q) {
+    const auto sols = m.inverse({q.x, q.y, m.orientation()});
+    return std::any_of(sols.begin(), sols.end(), [](const JointSolution& s) { return s.valid; });
+  });
   EXPECT_NEAR(grid, exact, 0.01 * exact);
   EXPECT_GT(exact, 0.0);
 }
@@ -357,24 +360,17 @@ TEST(ThreeRrp, CrankLimitedStripWorkspaceMatchesAnInverseKinematicsGridCount) {
     return ThreeRrp(ThreeRrpDrive::crank, free, plat, 0.35);
   }();
   EXPECT_LT(exact, unlimited.workspace().area());
-  const auto box = ws.bbox();
-  const int n = 400;
-  const double dx = box.width() / n, dy = box.height() / n;
-  long count = 0;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const Pose p{box.min.x + (i + 0.5) * dx, box.min.y + (j + 0.5) * dy, 0.35};
-      // In the workspace iff every chain has some crank angle within its
-      // limits (any working mode per chain).
-      bool in = true;
-      for (int k = 0; k < 3 && in; ++k) {
-        bool any = false;
-        for (const auto& s : m.inverse_chain(k, p)) any = any || m.limit_problem(k, s.joint).empty();
-        in = any;
-      }
-      count += in ? 1 : 0;
+  // In the workspace iff every chain has some crank angle within its limits
+  // (any working mode per chain).
+  const double grid = grid_area(ws.bbox(), 400, [&](Point q) {
+    for (int k = 0; k < 3; ++k) {
+      bool any = false;
+      for (const auto& s : m.inverse_chain(k, {q.x, q.y, 0.35})) any = any || m.limit_problem(k, s.joint).empty();
+      if (!any) return false;
     }
-  EXPECT_NEAR(static_cast<double>(count) * dx * dy, exact, 0.01 * exact);
+    return true;
+  });
+  EXPECT_NEAR(grid, exact, 0.01 * exact);
 }
 
 // ---------------------------------------------------------------------------
@@ -531,20 +527,17 @@ TEST(ThreeRpr, AnnulusWorkspaceMatchesAGridCount) {
   const auto ws = m.workspace();
   const double exact = ws.area();
   ASSERT_GT(exact, 0.0);
-  const auto box = m.bounds();
-  const int n = 500;
-  const double dx = box.width() / n, dy = box.height() / n;
-  long count = 0;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const Pose p{box.min.x + (i + 0.5) * dx, box.min.y + (j + 0.5) * dy, 0.3};
-      const auto l = m.leg_lengths(p);
-      bool in = true;
-      for (std::size_t k = 0; k < 3; ++k) in = in && l[k] >= limits[k][0] && l[k] <= limits[k][1];
-      count += in ? 1 : 0;
-      EXPECT_EQ(in, m.reachable(p));
-    }
-  EXPECT_NEAR(static_cast<double>(count) * dx * dy, exact, 0.01 * exact);
+  int disagreements = 0;
+  const double grid = grid_area(m.bounds(), 500, [&](Point q) {
+    const Pose p{q.x, q.y, 0.3};
+    const auto l = m.leg_lengths(p);
+    bool in = true;
+    for (std::size_t k = 0; k < 3; ++k) in = in && l[k] >= limits[k][0] && l[k] <= limits[k][1];
+    disagreements += in != m.reachable(p) ? 1 : 0;
+    return in;
+  });
+  EXPECT_EQ(disagreements, 0);
+  EXPECT_NEAR(grid, exact, 0.01 * exact);
 }
 
 }  // namespace
