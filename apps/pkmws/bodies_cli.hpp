@@ -23,6 +23,9 @@ Json real_workspace_json(const bodies::RealWorkspace& real);
 /// The text lines of `pkmws area` for the real workspace (unit: e.g. "mm²").
 void print_real_workspace(const bodies::RealWorkspace& real, const std::string& unit);
 
+/// The parts at platform point p as figure overlays (grey, semi-transparent); empty when p is unreachable.
+std::vector<io::FigureOptions::Overlay> part_overlays(const io::MechanismFile& file, geometry::Point p);
+
 /// The figure overlays: interference regions shaded and labelled by pair, the real workspace outlined in black.
 std::vector<io::FigureOptions::Overlay> real_workspace_overlays(const bodies::RealWorkspace& real);
 

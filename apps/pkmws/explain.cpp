@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "bodies_cli.hpp"
+#include "pkmws/geometry/primitives.hpp"
 #include "pkmws/io/export.hpp"
 
 namespace pkmws::cli {
@@ -110,6 +111,26 @@ std::vector<io::FigureOptions::Overlay> real_workspace_overlays(const bodies::Re
   outline.stroke_px = 2.2;
   outline.legend = real.real.exact ? "real workspace" : "real workspace (inner enclosure)";
   out.push_back(std::move(outline));
+  return out;
+}
+
+std::vector<io::FigureOptions::Overlay> part_overlays(const io::MechanismFile& file, geometry::Point p) {
+  std::vector<io::FigureOptions::Overlay> out;
+  const auto shapes = file.bodies->shapes_at(p);
+  if (!shapes) return out;
+  const auto& parts = file.bodies->model().parts;
+  for (std::size_t k = 0; k < shapes->size(); ++k) {
+    if (!parts[k].solid()) continue;
+    const bodies::Shape& s = (*shapes)[k];
+    io::FigureOptions::Overlay ov;
+    ov.region = bodies::minkowski_with_disk(s, 0.0);  // the part itself (its radius is in the shape)
+    ov.fill = parts[k].fixed() ? "#9e9e9e" : "#607d8b";
+    ov.fill_opacity = 0.35;
+    ov.stroke = "#37474f";
+    ov.stroke_px = 0.8;
+    out.push_back(std::move(ov));
+  }
+  if (!out.empty()) out.front().legend = "parts at the drawn pose";
   return out;
 }
 

@@ -91,6 +91,9 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
             figure.caption = caption;
             // Draw the mechanism at a collision-free pose.
             if (!real.real.inner.empty()) pose = sample_pose(mech, real.real.inner);
+            // The parts themselves at that pose, under the labels.
+            auto parts = part_overlays(mech, {pose.x, pose.y});
+            figure.overlays.insert(figure.overlays.begin(), parts.begin(), parts.end());
           }
           content = io::workspace_figure(mech, region, pose, figure);
         }

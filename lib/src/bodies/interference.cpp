@@ -112,6 +112,7 @@ geometry::Region minkowski_with_disk(const Shape& part, double r) {
   std::vector<geometry::Region> pieces;
   const auto& c = part.core;
   if (c.size() >= 3) pieces.push_back(geometry::polygon(c));
+  if (!(rr > 0.0)) return c.size() >= 3 ? pieces.front() : geometry::Region{};  // no thickness: the polygon itself
   if (c.size() == 1) {
     pieces.push_back(geometry::disk(c[0], rr));
   } else {

@@ -121,6 +121,7 @@ std::string workspace_figure(const MechanismFile& file, const geometry::Region& 
   for (const Point& p : drawing.sliders) add(p);
   for (const Point& p : drawing.base_points) add(p);
   if (mech) add(drawing.tool);
+  for (const auto& ov : options.overlays) view.expand(ov.region.bbox());
   if (view.empty()) view.expand(Point{0.0, 0.0});
   double span = std::max(view.width(), view.height());
   if (!(span > 0.0)) span = 1.0;
