@@ -14,7 +14,12 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
   auto json = std::make_shared<bool>(false);
   sub->add_option("FILE", *file, "Mechanism file (JSON)")->required();
   sub->add_flag("--json", *json, "Print one JSON object");
-  commands.push_back({sub, [file, json] {
+  auto depth = std::make_shared<int>(7);
+  sub->add_option("--interference-depth", *depth,
+                  "Files with bodies: quadtree depth of the certified interference regions "
+                  "(each level about halves the real area's bound width; default 7)")
+      ->check(CLI::Range(0, 12));
+  commands.push_back({sub, [file, json, depth] {
     const auto start = std::chrono::steady_clock::now();
     const io::MechanismFile mech = io::load_mechanism(*file);
     if (mech.criteria.any()) {
@@ -51,7 +56,7 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
     // SPEC §3.2: with bodies, the real workspace = reachable − ∪ interference.
     std::optional<bodies::RealWorkspace> real;
     if (mech.bodies) {
-      real = real_workspace_of(mech, region, 7);
+      real = real_workspace_of(mech, region, *depth);
       report.update(real_workspace_json(*real));
     }
     const double time_ms = elapsed_ms(start);

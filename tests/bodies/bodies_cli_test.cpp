@@ -142,6 +142,28 @@ TEST(BodiesCli, ExportDrawsInterferenceAndRealOutline) {
   EXPECT_FALSE(fs::exists(wkt));
 }
 
+// Every certified pair of the M3 machine (rods, slider blocks and axis bodies
+// against each other) converges: its bound width shrinks with the quadtree depth.
+TEST(BodiesMachines, EveryPairsBoundWidthShrinksWithDepth) {
+  const auto mech = io::load_mechanism(dataset("machine_moma_m3"));
+  const auto reachable = mech.model->workspace();
+  bodies::InterferenceOptions coarse, fine;
+  coarse.max_depth = 4;
+  fine.max_depth = 6;
+  const auto a = bodies::real_workspace(*mech.bodies, reachable, coarse);
+  const auto b = bodies::real_workspace(*mech.bodies, reachable, fine);
+  ASSERT_EQ(a.interference.size(), b.interference.size());
+  int certified_pairs = 0;
+  for (std::size_t k = 0; k < a.interference.size(); ++k) {
+    const double wa = a.interference[k].region.width(), wb = b.interference[k].region.width();
+    if (wa == 0.0) continue;
+    ++certified_pairs;
+    // Two levels: about a quarter; at most 0.6 allowed.
+    EXPECT_LT(wb, 0.6 * wa) << a.interference[k].a << " / " << a.interference[k].b;
+  }
+  EXPECT_GE(certified_pairs, 5);
+}
+
 // Every bundled machine: the certified regions against the pose-by-pose test.
 TEST(BodiesMachines, EveryRegionAgreesWithThePoseTest) {
   for (const char* stem : {"machine_moma_m1", "machine_moma_m3", "machine_moma_m5", "machine_five_bar_dextar"}) {

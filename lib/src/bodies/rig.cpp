@@ -161,10 +161,11 @@ class MomaRig final : public BodyRig {
           const Point r = m_->legs()[leg].reference;
           const double hl = 0.5 * part.length, hw = 0.5 * part.width;
           Enclosure e{{guide_rectangle(r, a, plo[leg] - hl, phi[leg] + hl, hw), 0.0}, std::nullopt};
-          // Common to every slider position: [phi - hl, plo + hl]; rounded inside it.
+          // Common to every slider position: [phi - hl, plo + hl].
           const double in_half = hl - dp;
           if (in_half > 0.0) {
-            const double rho = 0.5 * std::min(in_half, hw);
+            // A thin rounding (radius rho > 0) makes overlap of two witnesses a strict test.
+            const double rho = 1e-3 * std::min(in_half, hw);
             e.inner = Shape{guide_rectangle(r, a, pm - in_half + rho, pm + in_half - rho, hw - rho), rho};
           }
           out.parts.push_back(std::move(e));
