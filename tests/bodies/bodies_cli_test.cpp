@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <random>
 #include <sstream>
 #include <string>
@@ -162,6 +163,38 @@ TEST(BodiesMachines, EveryPairsBoundWidthShrinksWithDepth) {
     EXPECT_LT(wb, 0.6 * wa) << a.interference[k].a << " / " << a.interference[k].b;
   }
   EXPECT_GE(certified_pairs, 5);
+}
+
+// The DexTAR machine: where the distal links fold onto each other (near the
+// type-2 singularity ε = 0, SPEC §1.4) the link-angle pair collides, and such
+// poses lie in that pair's certified region.
+TEST(BodiesMachines, DistalLinksCannotFoldOntoEachOther) {
+  const auto mech = io::load_mechanism(dataset("machine_five_bar_dextar"));
+  const auto reachable = mech.model->workspace();
+  ASSERT_GT(mech.bodies->model().min_link_angle, 0.0);
+  certified::CellOptions cells;
+  cells.max_depth = 5;
+  const auto fold = certified::certify(bodies::link_angle_test(*mech.bodies, 1e-9), reachable, cells);
+  EXPECT_GT(fold.area_lower, 0.0);
+  const auto bb = reachable.bbox();
+  const testing_bodies::Classifier outer(fold.outer, 1e-9);
+  std::mt19937 gen(3);
+  std::uniform_real_distribution<double> x(bb.min.x, bb.max.x), y(bb.min.y, bb.max.y);
+  int folded = 0;
+  for (int k = 0; k < 20000 && folded < 20; ++k) {
+    const geometry::Point p{x(gen), y(gen)};
+    const auto v = mech.bodies->link_vectors_at(p);
+    if (!v) continue;
+    const double angle = bodies::unsigned_angle((*v)[0], (*v)[1]);
+    if (angle > 10.0 * std::numbers::pi / 180.0) continue;  // well below the 20° minimum
+    ++folded;
+    const auto check = bodies::check_pose(*mech.bodies, p);
+    EXPECT_TRUE(check.collides());
+    EXPECT_EQ(check.contacts.back().kind, "link_angle");
+    EXPECT_TRUE(check.contacts.back().collides);
+    EXPECT_NE(outer(p), testing_bodies::Side::outside) << p.x << ", " << p.y;
+  }
+  EXPECT_GE(folded, 5);
 }
 
 // Every bundled machine: the certified regions against the pose-by-pose test.
