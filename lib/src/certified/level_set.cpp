@@ -50,13 +50,23 @@ Interval enclose_value(const ScalarField& f, const Box& box, CellState dom, doub
   return v;
 }
 
-CellState classify(const ScalarField& f, double level, const Box& box) {
-  const CellState dom = f.domain(box);
-  if (dom == CellState::outside) return CellState::outside;
-  const Interval v = enclose_value(f, box, dom, level);
-  if (v.hi <= level) return CellState::inside;
-  if (v.lo > level) return CellState::outside;
-  return CellState::undecided;
+// The set is ⋂_k { F_k <= level_k } (within W). `undecided_index` is the one
+// constraint left undecided when all others hold on the whole box (else -1).
+CellState classify(const std::vector<Constraint>& cs, const Box& box, int* undecided_index = nullptr) {
+  int undecided = 0, last = -1;
+  for (std::size_t k = 0; k < cs.size(); ++k) {
+    const ScalarField& f = *cs[k].field;
+    const CellState dom = f.domain(box);
+    if (dom == CellState::outside) return CellState::outside;
+    const Interval v = enclose_value(f, box, dom, cs[k].level);
+    if (v.lo > cs[k].level) return CellState::outside;
+    if (!(v.hi <= cs[k].level)) {
+      ++undecided;
+      last = static_cast<int>(k);
+    }
+  }
+  if (undecided_index) *undecided_index = undecided == 1 ? last : -1;
+  return undecided == 0 ? CellState::inside : CellState::undecided;
 }
 
 // ---------------------------------------------------------------------------
@@ -127,7 +137,7 @@ class Tracer {
     env_hi_.push_back({a, w}); env_hi_.push_back({b, w});
   }
   void record(double u, const Sample& s) {
-    if (s.state == 0) {
+    if (s.state == 0 && s.hi - s.lo <= 1e-12 * scale_) {
       const double v = 0.5 * (s.lo + s.hi);
       if (v >= v0_ && v <= v1_) curve_.push_back(xy(u, v));
     }
@@ -386,7 +396,7 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
 // The part of the cell between an envelope and the cell's base edge (v0 when
 // S lies below the curve, v1 when above), as simple polygons: one per run
 // where the envelope is off the base edge.
-void envelope_polygons(const CellTrace& t, const Box& cell, bool use_hi, std::vector<Region>& out) {
+void envelope_polygons(const CellTrace& t, const Box& cell, bool use_hi, std::vector<std::vector<Point>>& out) {
   const auto& env = use_hi ? t.env_hi : t.env_lo;
   const double v0 = t.swapped ? cell.min.x : cell.min.y, v1 = t.swapped ? cell.max.x : cell.max.y;
   const double base = t.sgn > 0 ? v0 : v1;
@@ -396,24 +406,24 @@ void envelope_polygons(const CellTrace& t, const Box& cell, bool use_hi, std::ve
     if (run.empty()) return;
     const Point end = xy(u_end, base);
     if (run.back() != end) run.push_back(end);
-    if (run.size() >= 3) {
-      try {
-        Region r = geometry::polygon(run);
-        if (!r.empty()) out.push_back(std::move(r));
-      } catch (const std::exception&) {
-        // Degenerate (zero-area) run: nothing to add.
-      }
-    }
+    if (run.size() >= 3) out.push_back(run);
     run.clear();
   };
+  bool have_base = false;
+  double last_base = 0.0;  // u of the last envelope vertex on the base edge
   for (std::size_t k = 0; k < env.size(); ++k) {
     const double w = std::clamp(env[k].w, v0, v1);
     const Point p = xy(env[k].u, w);
     if (w == base) {
+      if (!run.empty()) run.push_back(p);
       emit(env[k].u);
+      have_base = true;
+      last_base = env[k].u;
       continue;
     }
-    if (run.empty()) run.push_back(xy(env[k].u, base));
+    // A run starts where the envelope leaves the base edge (the last vertex on
+    // it), or at the cell's side.
+    if (run.empty()) run.push_back(xy(have_base ? last_base : env[k].u, base));
     if (run.back() != p) run.push_back(p);
   }
   if (!env.empty()) emit(env.back().u);
@@ -442,6 +452,34 @@ void split_within(const WithinTest& within_test, const Box& b, int depth, std::v
   split_within(within_test, make_box(xm, ym, b.max.x, b.max.y), depth - 1, inside, undecided, inside_area, undecided_area);
 }
 
+// Boxes under (sgn > 0) / above (sgn < 0) a piecewise-linear envelope: on each
+// piece [u_k, u_k+1] the envelope lies between its end values, so the box up
+// to the smaller (inner) or larger (outer) end is inside / contains the part.
+void step_boxes(const CellTrace& t, const Box& cell, bool inner, std::vector<Box>& out) {
+  // One box per traced cell (a long chain of tiny boxes makes CGAL's lazy
+  // area evaluation recurse too deeply): up to the envelope's extreme value.
+  const auto& env = (t.sgn > 0) == inner ? t.env_lo : t.env_hi;
+  const double v0 = t.swapped ? cell.min.x : cell.min.y, v1 = t.swapped ? cell.max.x : cell.max.y;
+  const double u0 = t.swapped ? cell.min.y : cell.min.x, u1 = t.swapped ? cell.max.y : cell.max.x;
+  if (env.empty()) return;
+  double wmin = v1, wmax = v0;
+  for (const PLPoint& p : env) {
+    const double w = std::clamp(p.w, v0, v1);
+    wmin = std::min(wmin, w);
+    wmax = std::max(wmax, w);
+  }
+  double lo, hi;
+  if (t.sgn > 0) {
+    lo = v0;
+    hi = inner ? wmin : wmax;
+  } else {
+    lo = inner ? wmax : wmin;
+    hi = v1;
+  }
+  if (!(hi > lo)) return;
+  out.push_back(t.swapped ? make_box(lo, u0, hi, u1) : make_box(u0, lo, u1, hi));
+}
+
 struct LeafResult {
   std::vector<Box> inside;      // certified in S (by value)
   std::vector<Box> undecided;   // at the depth limit
@@ -449,25 +487,29 @@ struct LeafResult {
   std::uint64_t tests = 0;
 };
 
-void refine(const ScalarField& f, double level, const WithinTest& within_test, const Box& cell, int depth,
+void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, const Box& cell, int depth,
             int max_depth, double tau, bool trace, LeafResult& r) {
   ++r.tests;
-  const CellState c = classify(f, level, cell);
+  int active = -1;
+  const CellState c = classify(cs, cell, &active);
   if (c == CellState::inside) { r.inside.push_back(cell); return; }
   if (c == CellState::outside) return;
-  if (trace && f.domain(cell) == CellState::inside && within_test(cell) == CellState::inside) {
-    CellTrace t = try_trace(f, level, cell, tau);
-    if (t.ok) {
-      r.traced.emplace_back(cell, std::move(t));
-      return;
+  if (trace && active >= 0) {
+    const Constraint& k = cs[static_cast<std::size_t>(active)];
+    if (k.field->domain(cell) == CellState::inside && within_test(cell) == CellState::inside) {
+      CellTrace t = try_trace(*k.field, k.level, cell, tau);
+      if (t.ok) {
+        r.traced.emplace_back(cell, std::move(t));
+        return;
+      }
     }
   }
   if (depth >= max_depth) { r.undecided.push_back(cell); return; }
   const double xm = 0.5 * (cell.min.x + cell.max.x), ym = 0.5 * (cell.min.y + cell.max.y);
-  refine(f, level, within_test, make_box(cell.min.x, cell.min.y, xm, ym), depth + 1, max_depth, tau, trace, r);
-  refine(f, level, within_test, make_box(xm, cell.min.y, cell.max.x, ym), depth + 1, max_depth, tau, trace, r);
-  refine(f, level, within_test, make_box(cell.min.x, ym, xm, cell.max.y), depth + 1, max_depth, tau, trace, r);
-  refine(f, level, within_test, make_box(xm, ym, cell.max.x, cell.max.y), depth + 1, max_depth, tau, trace, r);
+  refine(cs, within_test, make_box(cell.min.x, cell.min.y, xm, ym), depth + 1, max_depth, tau, trace, r);
+  refine(cs, within_test, make_box(xm, cell.min.y, cell.max.x, ym), depth + 1, max_depth, tau, trace, r);
+  refine(cs, within_test, make_box(cell.min.x, ym, xm, cell.max.y), depth + 1, max_depth, tau, trace, r);
+  refine(cs, within_test, make_box(xm, ym, cell.max.x, cell.max.y), depth + 1, max_depth, tau, trace, r);
 }
 
 // Splits merged runs of the cover back into its leaf cells.
@@ -491,7 +533,7 @@ std::vector<Box> leaf_cells(const std::vector<Box>& runs, const Box& window, int
   return out;
 }
 
-LevelSetResult run_once(const ScalarField& field, double level, const Region& within, const WithinTest& within_test,
+LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within, const WithinTest& within_test,
                         const LevelSetOptions& options, double tau_override) {
   LevelSetResult result;
   CellOptions co;
@@ -499,7 +541,7 @@ LevelSetResult run_once(const ScalarField& field, double level, const Region& wi
   co.base = options.base;
   co.max_depth = options.cover_depth;
   co.threads = options.threads;
-  const CellCover cover_result = certified::cover([&](const Box& b) { return classify(field, level, b); }, co);
+  const CellCover cover_result = certified::cover([&](const Box& b) { return classify(cs, b); }, co);
   result.cell_tests = cover_result.tests;
   const std::vector<Box> leaves = leaf_cells(cover_result.undecided, co.window, co.base, co.max_depth);
 
@@ -519,7 +561,7 @@ LevelSetResult run_once(const ScalarField& field, double level, const Region& wi
   policy.threads = options.threads;
   policy.serial_threshold = 8;
   detail::for_each_block(policy, leaves.size(), leaves.size() * 64, [&](std::size_t k) {
-    refine(field, level, within_test, leaves[k], 0, options.refine_depth, tau, options.trace, per_leaf[k]);
+    refine(cs, within_test, leaves[k], 0, options.refine_depth, tau, options.trace, per_leaf[k]);
   });
 
   double in_lower = 0.0, traced_lower = 0.0, traced_upper = 0.0, undecided_in = 0.0;
@@ -530,7 +572,7 @@ LevelSetResult run_once(const ScalarField& field, double level, const Region& wi
     if (within_test(b) == CellState::inside) in_lower += box_area(b);
     else straddle_inside.push_back(b);
   }
-  std::vector<Region> lo_polys, hi_polys;
+  std::vector<Box> inner_steps, outer_steps;
   const double small_cell = co.window.width() / (co.base * std::ldexp(1.0, co.max_depth + 4));
   // Refined cells across W's boundary are small (near the points where the
   // level curve meets W's boundary): counted as undecided (lower 0, upper the
@@ -560,9 +602,10 @@ LevelSetResult run_once(const ScalarField& field, double level, const Region& wi
       result.curve_points += t.points;
       traced_lower += t.lower;
       traced_upper += t.upper;
+      envelope_polygons(t, cell, t.sgn < 0, result.inner_polygons);  // below env_lo, or above env_hi
       if (options.build_regions) {
-        envelope_polygons(t, cell, t.sgn < 0, lo_polys);  // inner: below env_lo, or above env_hi
-        envelope_polygons(t, cell, t.sgn > 0, hi_polys);  // outer
+        step_boxes(t, cell, true, inner_steps);
+        step_boxes(t, cell, false, outer_steps);
       }
       if (t.curve.size() >= 2) result.curves.push_back(std::move(t.curve));
     }
@@ -580,38 +623,49 @@ LevelSetResult run_once(const ScalarField& field, double level, const Region& wi
   result.traced_width = traced_upper - traced_lower;
   result.region.exact = false;
   if (options.build_regions) {
-    std::vector<Region> inner_parts = lo_polys;
-    inner_parts.push_back(within.intersect(boxes_region(inside_all)));
-    Region inner = Region::unite_all(inner_parts);
-    std::vector<Region> outer_parts = hi_polys;
-    outer_parts.push_back(inner);
-    if (!undecided_all.empty()) outer_parts.push_back(within.intersect(boxes_region(undecided_all)));
-    Region outer = Region::unite_all(outer_parts);
+    // Exact regions from boxes: each traced cell contributes the box below
+    // (inner) / around (outer) its envelopes, so area(inner) <= area_lower
+    // and area(outer) >= area_upper (the bounds use the envelopes themselves).
+    std::vector<Box> in_boxes = inside_all;
+    in_boxes.insert(in_boxes.end(), inner_steps.begin(), inner_steps.end());
+    Region inner = within.intersect(boxes_region(in_boxes));
+    std::vector<Box> out_boxes = inside_all;
+    out_boxes.insert(out_boxes.end(), outer_steps.begin(), outer_steps.end());
+    out_boxes.insert(out_boxes.end(), undecided_all.begin(), undecided_all.end());
+    Region outer = within.intersect(boxes_region(out_boxes));
     result.region.inner = std::move(inner);
     result.region.outer = std::move(outer);
   }
+  result.inside_boxes = std::move(inside_all);
+  result.undecided_boxes = std::move(undecided_all);
   return result;
 }
 
 }  // namespace
 
-LevelSetResult sublevel_set(const ScalarField& field, double level, const Region& within, const WithinTest& within_test,
-                            const LevelSetOptions& options) {
+LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Region& within,
+                            const WithinTest& within_test, const LevelSetOptions& options) {
   if (!(options.relative_tolerance > 0.0)) throw std::invalid_argument("sublevel_set: relative_tolerance must be positive");
   if (options.refine_depth < 0 || options.refine_depth > 40) throw std::invalid_argument("sublevel_set: refine_depth in [0, 40]");
+  if (constraints.empty()) throw std::invalid_argument("sublevel_set: no field");
   if (within.empty()) {
     LevelSetResult r;
     r.region = from_exact(within);
     return r;
   }
-  LevelSetResult r = run_once(field, level, within, within_test, options, 0.0);
+  LevelSetResult r = run_once(constraints, within, within_test, options, 0.0);
   // One retry with a tighter τ when the estimate of area or curve length was off.
   const double width = r.region.area_upper - r.region.area_lower;
   if (options.trace && width > options.relative_tolerance * r.region.area_upper && r.traced_width > 0.5 * width) {
     const double tau = r.tolerance_per_length * 0.5 * options.relative_tolerance * r.region.area_upper / width;
-    r = run_once(field, level, within, within_test, options, tau);
+    r = run_once(constraints, within, within_test, options, tau);
   }
   return r;
+}
+
+LevelSetResult sublevel_set(const ScalarField& field, double level, const Region& within, const WithinTest& within_test,
+                            const LevelSetOptions& options) {
+  return sublevel_set(std::vector<Constraint>{{&field, level}}, within, within_test, options);
 }
 
 CertifiedRegion certify_cells(const ScalarField& field, double level, const Region& within, int base, int max_depth,
@@ -620,7 +674,8 @@ CertifiedRegion certify_cells(const ScalarField& field, double level, const Regi
   co.base = base;
   co.max_depth = max_depth;
   co.threads = threads;
-  return certify([&](const Box& b) { return classify(field, level, b); }, within, co);
+  const std::vector<Constraint> cs{{&field, level}};
+  return certify([&](const Box& b) { return classify(cs, b); }, within, co);
 }
 
 std::vector<Band> bands_from_sublevels(const std::vector<double>& levels, const std::vector<LevelSetResult>& sublevels) {

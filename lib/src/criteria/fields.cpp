@@ -1,6 +1,8 @@
 // Criterion fields (see criteria/fields.hpp; derivations in docs/theory/level_sets.md).
 #include "pkmws/criteria/fields.hpp"
 
+#include "pkmws/certified/template_field.hpp"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -23,37 +25,6 @@ namespace {
 constexpr double pi = std::numbers::pi;
 constexpr double deg = pi / 180.0;
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-
-// Adapter: a field written once as `template <class T> T eval(T x, T y)` for
-// T = double, Interval, Jet<double>, Jet<Interval>, plus its domain test.
-template <class Impl>
-class TemplateField final : public certified::ScalarField {
- public:
-  explicit TemplateField(Impl impl) : impl_(std::move(impl)) {}
-  double value(Point p) const override { return impl_.template eval<double>(p.x, p.y); }
-  Jet<double> jet(Point p) const override {
-    return impl_.template eval<Jet<double>>(Jet<double>::variable_x(p.x), Jet<double>::variable_y(p.y));
-  }
-  certified::Grad<double> grad(Point p) const override {
-    using G = certified::Grad<double>;
-    return impl_.template eval<G>(G::variable_x(p.x), G::variable_y(p.y));
-  }
-  certified::Grad<Interval> grad(const Box& b) const override {
-    using G = certified::Grad<Interval>;
-    return impl_.template eval<G>(G::variable_x(Interval(b.min.x, b.max.x)), G::variable_y(Interval(b.min.y, b.max.y)));
-  }
-  Interval enclose(const Box& b) const override {
-    return impl_.template eval<Interval>(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y));
-  }
-  Jet<Interval> jet(const Box& b) const override {
-    return impl_.template eval<Jet<Interval>>(Jet<Interval>::variable_x(Interval(b.min.x, b.max.x)),
-                                              Jet<Interval>::variable_y(Interval(b.min.y, b.max.y)));
-  }
-  CellState domain(const Box& b) const override { return impl_.domain(b); }
-
- private:
-  Impl impl_;
-};
 
 // |p - c|² over a box (tight: separable).
 Interval dist2(const Box& b, Point c) {
@@ -242,7 +213,7 @@ CriterionField five_bar_pressure_angle(const mechanisms::FiveBar& mechanism) {
   c.name = "pressure_angle";
   c.unit = "deg";
   c.key = "five_bar.cos2eps";
-  c.surrogate = std::make_shared<TemplateField<FiveBarCosEps>>(impl);
+  c.surrogate = std::make_shared<certified::TemplateField<FiveBarCosEps>>(impl);
   // α <= α_max  <=>  |cos ε| <= sin α_max  <=>  cos²ε <= sin²α_max.
   c.level = [](double alpha_deg) {
     const double a = std::clamp(alpha_deg, 0.0, 90.0) * deg;
@@ -280,7 +251,7 @@ CriterionField three_rpr_reaction(const mechanisms::ThreeRpr& mechanism, const m
   c.name = "reaction";
   c.unit = "N";
   c.key = "three_rpr.reaction" + std::to_string(leg);
-  c.surrogate = std::make_shared<TemplateField<ThreeRprTwist>>(impl);
+  c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
   c.level = [](double r) { return r; };
   c.value = [impl](Point p) { return impl.eval<double>(p.x, p.y); };
   c.within_test = [impl](const Box& b) { return impl.within(b); };
@@ -294,7 +265,7 @@ CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, i
   c.name = "pressure_angle";
   c.unit = "deg";
   c.key = "three_rpr.vb2_" + std::to_string(leg);
-  c.surrogate = std::make_shared<TemplateField<ThreeRprTwist>>(impl);
+  c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
   // seed 004: cos α_i = |r_i . v_i| / |v_i| = 1 / |v_i|  =>  α_i <= α  <=>  |v_i|² <= 1 / cos²α.
   c.level = [](double alpha_deg) {
     const double ca = std::cos(std::clamp(alpha_deg, 0.0, 90.0) * deg);
@@ -380,16 +351,16 @@ LimitedWorkspace limited_workspace(const io::MechanismFile& file, const std::vec
   if (by_key.empty()) {
     out.region = certified::from_exact(within);
   } else {
-    certified::LevelSetOptions o = options;
-    if (by_key.size() > 1) o.build_regions = true;  // the intersection needs the regions
-    bool first = true;
+    std::vector<certified::Constraint> cs;
+    certified::WithinTest within_test;
     for (auto& [key, entry] : by_key) {
-      certified::LevelSetResult r =
-          certified::sublevel_set(*entry.first.surrogate, entry.second, within, entry.first.within_test, o);
-      for (auto& piece : r.curves) out.curves.push_back(std::move(piece));
-      out.region = first ? r.region : certified::intersect(out.region, r.region);
-      first = false;
+      cs.push_back({entry.first.surrogate.get(), entry.second});
+      if (!within_test) within_test = entry.first.within_test;  // one mechanism: one workspace test
     }
+    certified::LevelSetResult r = certified::sublevel_set(cs, within, within_test, options);
+    out.region = std::move(r.region);
+    out.curves = std::move(r.curves);
+    out.detail = std::move(r);
   }
   out.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return out;

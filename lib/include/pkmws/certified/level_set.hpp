@@ -60,8 +60,10 @@ struct LevelSetOptions {
   int refine_depth = 8;
   /// 0: every hardware thread, 1: serial. Results do not depend on it.
   int threads = 0;
-  /// Build the inner/outer regions (exact polygons; costly for plots only).
-  bool build_regions = true;
+  /// Build the inner/outer regions (exact, from boxes at cell resolution: a
+  /// traced cell gives the box below/around its envelopes, so area(inner) <=
+  /// area_lower and area(outer) >= area_upper). Costly; the bounds do not need it.
+  bool build_regions = false;
   /// Trace curves (layer b); false gives the pure cell baseline (layer a).
   bool trace = true;
 };
@@ -71,7 +73,8 @@ using CurvePiece = std::vector<geometry::Point>;
 
 struct LevelSetResult {
   /// inner/outer (when built) and the certified area bounds. Without regions,
-  /// inner/outer are empty and area_lower/area_upper still hold.
+  /// inner/outer are empty and area_lower/area_upper still hold; with them,
+  /// area(inner) <= area_lower <= area(S) <= area_upper <= area(outer).
   CertifiedRegion region;
   std::vector<CurvePiece> curves;
   std::uint64_t traced_cells = 0;      // cells where the curve was traced
@@ -81,6 +84,17 @@ struct LevelSetResult {
   double undecided_area = 0.0;         // part of the width from undecided cells
   double traced_width = 0.0;           // part of the width from traced cells
   double tolerance_per_length = 0.0;   // τ used (area per unit curve length)
+  /// Pieces for figures (no exact arithmetic): cells certified in S (before
+  /// clipping to W), the traced cells' inner polygons, undecided cells.
+  std::vector<geometry::Box> inside_boxes;
+  std::vector<std::vector<geometry::Point>> inner_polygons;
+  std::vector<geometry::Box> undecided_boxes;
+};
+
+/// One constraint F <= level of an intersection of sub-level sets.
+struct Constraint {
+  const ScalarField* field = nullptr;
+  double level = 0.0;
 };
 
 /// Conservative classification of a box against the workspace W (inside only
@@ -91,6 +105,10 @@ using WithinTest = CellTest;
 /// `within_test` classifies boxes against `within` (may always answer
 /// undecided: then every cell goes through exact region operations).
 LevelSetResult sublevel_set(const ScalarField& field, double level, const geometry::Region& within,
+                            const WithinTest& within_test, const LevelSetOptions& options);
+/// ⋂_k { p ∈ within : F_k(p) <= level_k }: cells where all but one constraint
+/// hold are traced along that one's level curve.
+LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const geometry::Region& within,
                             const WithinTest& within_test, const LevelSetOptions& options);
 
 /// Layer (a) only: certify() with the interval test of F (quadtree depth

@@ -70,10 +70,11 @@ std::vector<Limit> file_limits(const io::MechanismFile& file);
 struct LimitedWorkspace {
   certified::CertifiedRegion region;     // inner/outer built when asked
   std::vector<certified::CurvePiece> curves;
+  certified::LevelSetResult detail;      // pieces and statistics (region and curves moved out)
   double time_ms = 0.0;
 };
 /// The workspace of `file` limited by `limits` (same surrogate: the stricter
-/// level; several surrogates: intersection of the enclosures, regions built).
+/// level; several surrogates: one certified intersection of sub-level sets).
 LimitedWorkspace limited_workspace(const io::MechanismFile& file, const std::vector<Limit>& limits,
                                    const certified::LevelSetOptions& options);
 

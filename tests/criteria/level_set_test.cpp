@@ -1,0 +1,301 @@
+// Certified sub-level sets: closed forms (disk, Cassini ovals with two
+// components, the lemniscate's saddle), dense sampling, point membership of
+// inner/outer, width against tolerance, DexTAR mirror symmetries, seed 004
+// figure 10's splitting, PAMINSA reaction-limited regions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "pkmws/certified/template_field.hpp"
+#include "pkmws/criteria/fields.hpp"
+#include "pkmws/geometry/primitives.hpp"
+#include "pkmws/mechanisms/five_bar.hpp"
+#include "pkmws/mechanisms/three_rpr.hpp"
+
+namespace {
+
+using namespace pkmws;
+using certified::CellState;
+using certified::Interval;
+using geometry::Box;
+using geometry::Point;
+
+constexpr double pi = std::numbers::pi;
+
+Box box(double x0, double y0, double x1, double y1) {
+  Box b;
+  b.min = {x0, y0};
+  b.max = {x1, y1};
+  return b;
+}
+
+// Cassini ovals: F = |p - f1|² |p - f2|², foci (±a, 0); F <= b⁴ is one oval for
+// b > a, two for b < a; b = a is the lemniscate (saddle of F at the origin).
+struct Cassini {
+  double a = 1.0;
+  template <class T> T eval(const T& x, const T& y) const {
+    using certified::sqr;
+    return (sqr(x - a) + sqr(y)) * (sqr(x + a) + sqr(y));
+  }
+  CellState domain(const Box&) const { return CellState::inside; }
+};
+
+// Area of { |p - f1| |p - f2| <= b² } in polar form r² = a² cos 2θ ± sqrt(b⁴ - a⁴ sin² 2θ):
+// b > a: ½ ∫ sqrt(b⁴ - a⁴ sin² 2θ) dθ over [0, 2π] ... plus the a² cos 2θ term
+// that integrates to 0; b < a: ∫ sqrt(b⁴ - a⁴ sin² 2θ) dθ where it is real.
+double cassini_area(double a, double b) {
+  const double b4 = b * b * b * b, a4 = a * a * a * a;
+  if (b > a) {
+    const int n = 200000;  // periodic smooth integrand: midpoint rule converges fast
+    double s = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const double t = 2.0 * pi * (k + 0.5) / n;
+      s += std::sqrt(b4 - a4 * std::sin(2 * t) * std::sin(2 * t));
+    }
+    return 0.5 * s * 2.0 * pi / n;
+  }
+  // sin 2θ = (b²/a²) sin t, t ∈ [-π/2, π/2] over each of the 4 θ-intervals: the
+  // integrand becomes smooth: sqrt(b⁴ - a⁴ sin²2θ) dθ = b⁴ cos² t / (2 a² sqrt(1 - k² sin² t)) dt, k = b²/a².
+  const double k = b * b / (a * a);
+  const int n = 200000;
+  double s = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double t = -pi / 2 + pi * (i + 0.5) / n;
+    s += b4 * std::cos(t) * std::cos(t) / (2.0 * a * a * std::sqrt(1.0 - k * k * std::sin(t) * std::sin(t)));
+  }
+  return 2.0 * s * pi / n;  // two lobes (θ near 0 and near π), each ∫ over t
+}
+
+certified::WithinTest always_inside(const Box& w) {
+  return [w](const Box& b) {
+    if (b.min.x >= w.min.x && b.max.x <= w.max.x && b.min.y >= w.min.y && b.max.y <= w.max.y) return CellState::inside;
+    return CellState::undecided;
+  };
+}
+
+TEST(LevelSets, CassiniOvalsOneAndTwoComponentsAndTheLemniscate) {
+  const certified::TemplateField<Cassini> f(Cassini{1.0});
+  const Box w = box(-2.0, -1.5, 2.0, 1.5);
+  const geometry::Region window = geometry::rectangle(w);
+  for (double b : {0.7, 0.95, 1.0, 1.05, 1.3}) {
+    certified::LevelSetOptions o;
+    o.relative_tolerance = 1e-7;
+    o.build_regions = false;
+    const double level = b * b * b * b;
+    const auto r = certified::sublevel_set(f, level, window, always_inside(w), o);
+    for (const auto& piece : r.curves) {
+      for (const Point& p : piece) EXPECT_NEAR(f.value(p), level, 1e-13 * level);
+    }
+    if (b != 0.7 && b != 1.3) continue;
+    o.relative_tolerance = 1e-3;
+    o.build_regions = true;
+    const auto coarse = certified::sublevel_set(f, level, window, always_inside(w), o);
+    const double exact = cassini_area(1.0, b);
+    EXPECT_LE(r.region.area_lower, exact) << b;
+    EXPECT_GE(r.region.area_upper, exact) << b;
+    // The saddle (b = 1) leaves undecided cells around the origin only.
+    EXPECT_LT(r.region.width(), (b == 1.0 ? 1e-5 : 1e-6) * exact) << b;
+    EXPECT_GT(r.traced_cells, 0u);
+    // Regions: the inner region's area is the lower bound up to region rounding,
+    // and components: two ovals for b < 1.
+    // Regions from boxes: area(inner) <= area_lower <= exact <= area_upper <= area(outer).
+    EXPECT_LE(coarse.region.inner.area(), coarse.region.area_lower * (1 + 1e-12)) << b;
+    EXPECT_GE(coarse.region.outer.area(), coarse.region.area_upper * (1 - 1e-12)) << b;
+    EXPECT_GT(coarse.region.inner.area(), 0.97 * exact) << b;
+    EXPECT_LT(coarse.region.outer.area(), 1.03 * exact) << b;
+    // Points: inner satisfies F <= level, outside outer does not.
+    std::mt19937 rng(2);
+    std::uniform_real_distribution<double> ux(w.min.x, w.max.x), uy(w.min.y, w.max.y);
+    for (int k = 0; k < 2000; ++k) {
+      const Point p{ux(rng), uy(rng)};
+      if (coarse.region.inner.contains(p)) {
+        EXPECT_LE(f.value(p), level * (1 + 1e-12));
+      }
+      if (!coarse.region.outer.contains(p)) {
+        EXPECT_GT(f.value(p), level * (1 - 1e-12));
+      }
+    }
+    if (b < 0.99) {
+      EXPECT_EQ(coarse.region.outer.components(1e-9).size(), 2u) << b;
+    }
+    if (b > 1.01) {
+      EXPECT_EQ(coarse.region.inner.components(1e-9).size(), 1u) << b;
+    }
+  }
+}
+
+TEST(LevelSets, WidthShrinksWithTheToleranceAndBoundsNest) {
+  const certified::TemplateField<Cassini> f(Cassini{1.0});
+  const Box w = box(-2.0, -1.5, 2.0, 1.5);
+  const geometry::Region window = geometry::rectangle(w);
+  double previous = std::numeric_limits<double>::infinity();
+  const double exact = cassini_area(1.0, 1.2);
+  for (double tol : {1e-3, 1e-5, 1e-7}) {
+    certified::LevelSetOptions o;
+    o.relative_tolerance = tol;
+    o.build_regions = false;
+    const auto r = certified::sublevel_set(f, std::pow(1.2, 4), window, always_inside(w), o);
+    EXPECT_LT(r.region.width(), previous);
+    EXPECT_LE(r.region.width(), tol * exact);
+    EXPECT_LE(r.region.area_lower, exact);
+    EXPECT_GE(r.region.area_upper, exact);
+    previous = r.region.width();
+  }
+  // Layer (a) alone, deeper quadtree: narrower, always valid.
+  double cell_prev = std::numeric_limits<double>::infinity();
+  for (int depth : {4, 6, 8}) {
+    const auto c = certified::certify_cells(f, std::pow(1.2, 4), window, 16, depth, 1);
+    EXPECT_LE(c.area_lower, exact);
+    EXPECT_GE(c.area_upper, exact);
+    EXPECT_LT(c.width(), cell_prev);
+    cell_prev = c.width();
+  }
+}
+
+mechanisms::FiveBar dextar(int s1, int s2) {
+  mechanisms::FiveBarLeg a{{-0.1375, 0.0}, 0.23, 0.23, s1, std::nullopt, std::nullopt};
+  mechanisms::FiveBarLeg e{{0.1375, 0.0}, 0.23, 0.23, s2, std::nullopt, std::nullopt};
+  return mechanisms::FiveBar({a, e});
+}
+
+// Dense sampling: the fraction of a fine grid of cell centres of W's bbox that
+// satisfy the criterion; its error is at most (cells met by the boundary) x h²,
+// bounded generously by 4 x perimeter / h cells.
+double grid_estimate(const criteria::CriterionField& c, double threshold, const Box& w, int n, double& error) {
+  const double hx = w.width() / n, hy = w.height() / n;
+  long count = 0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const Point p{w.min.x + (i + 0.5) * hx, w.min.y + (j + 0.5) * hy};
+      const double v = c.value(p);
+      if (std::isfinite(v) && v <= threshold) ++count;
+    }
+  }
+  error = 0.0;
+  return static_cast<double>(count) * hx * hy;
+}
+
+bool in_polygon(const std::vector<Point>& poly, Point p) {
+  bool in = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    if ((poly[i].y > p.y) != (poly[j].y > p.y) &&
+        p.x < (poly[j].x - poly[i].x) * (p.y - poly[i].y) / (poly[j].y - poly[i].y) + poly[i].x) {
+      in = !in;
+    }
+  }
+  return in;
+}
+
+TEST(LevelSets, DexTARBoundsContainDenseSamplingAndThePiecesClassifyPoints) {
+  const auto m = dextar(1, 1);
+  const auto c = criteria::five_bar_pressure_angle(m);
+  const geometry::Region ws = m.workspace();
+  const Box w = ws.bbox();
+  for (double alpha : {20.0, 60.0}) {
+    certified::LevelSetOptions o;
+    o.relative_tolerance = 1e-5;
+    const auto r = certified::sublevel_set(*c.surrogate, c.level(alpha), ws, c.within_test, o);
+    double err = 0.0;
+    const int n = 500;
+    const double est = grid_estimate(c, alpha, w, n, err);
+    // Boundary cells of an 800² grid: the curves are a few metres long.
+    const double h = w.width() / n;
+    const double slack = 8.0 * h * std::max(w.width(), w.height());
+    EXPECT_LE(r.region.area_lower, est + slack) << alpha;
+    EXPECT_GE(r.region.area_upper, est - slack) << alpha;
+    EXPECT_LT(std::abs(est - r.region.area_estimate()), 0.02 * est) << alpha;
+    EXPECT_LE(r.region.width(), 1e-5 * r.region.area_upper) << alpha;
+    // Points certified in S (inside cells ∩ W, traced cells' inner polygons,
+    // which lie inside W) satisfy the criterion.
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<double> ux(w.min.x, w.max.x), uy(w.min.y, w.max.y);
+    int in = 0;
+    for (int k = 0; k < 2000; ++k) {
+      const Point p{ux(rng), uy(rng)};
+      bool certain = false;
+      for (const Box& b : r.inside_boxes) certain = certain || (b.contains(p) && ws.contains(p));
+      for (const auto& poly : r.inner_polygons) certain = certain || in_polygon(poly, p);
+      if (certain) {
+        ++in;
+        EXPECT_LE(c.value(p), alpha + 1e-9) << p.x << " " << p.y;
+      }
+    }
+    EXPECT_GT(in, 100);
+    EXPECT_FALSE(r.inner_polygons.empty());
+  }
+}
+
+// DexTAR is symmetric about both axes: y -> -y maps working mode (s1, s2) to
+// (-s1, -s2); x -> -x swaps the legs: (s1, s2) -> (-s2, -s1). So
+// area(+,+) = area(-,-), area(+,-) = area(-,+), and each is its own x-mirror.
+TEST(LevelSets, FourWorkingModesObeyTheMirrorSymmetries) {
+  for (double alpha : {40.0}) {
+    std::map<std::pair<int, int>, certified::CertifiedRegion> r;
+    for (int s1 : {-1, 1}) {
+      for (int s2 : {-1, 1}) {
+        const auto m = dextar(s1, s2);
+        const auto c = criteria::five_bar_pressure_angle(m);
+        certified::LevelSetOptions o;
+        o.relative_tolerance = 1e-5;
+        r[{s1, s2}] = certified::sublevel_set(*c.surrogate, c.level(alpha), m.workspace(), c.within_test, o).region;
+      }
+    }
+    auto overlap = [](const certified::CertifiedRegion& a, const certified::CertifiedRegion& b) {
+      return a.area_lower <= b.area_upper && b.area_lower <= a.area_upper;
+    };
+    EXPECT_TRUE(overlap(r[{1, 1}], r[{-1, -1}])) << alpha;
+    EXPECT_TRUE(overlap(r[{1, -1}], r[{-1, 1}])) << alpha;
+    // The (+,+) and (+,-) modes differ (the criterion depends on the mode).
+    EXPECT_FALSE(overlap(r[{1, 1}], r[{1, -1}])) << alpha;
+  }
+}
+
+// seed 004 fig. 10: at small α_max the usable workspace splits into several
+// parts: the certified inner region has several components (they meet only at
+// the base joints A and E, where ε is undefined and every level curve ends).
+TEST(LevelSets, SmallPressureAngleSplitsTheDexTARWorkspace) {
+  const auto m = dextar(1, -1);
+  const auto c = criteria::five_bar_pressure_angle(m);
+  const geometry::Region ws = m.workspace();
+  const auto small = certified::certify_cells(*c.surrogate, c.level(20.0), ws, 16, 4, 1);
+  EXPECT_GE(small.inner.components(1e-9).size(), 2u);
+  // The traced bounds: inside the cell baseline's, and the 20° region is much
+  // smaller than the 80° one.
+  certified::LevelSetOptions o;
+  o.relative_tolerance = 1e-5;
+  const auto s20 = certified::sublevel_set(*c.surrogate, c.level(20.0), ws, c.within_test, o);
+  const auto s80 = certified::sublevel_set(*c.surrogate, c.level(80.0), ws, c.within_test, o);
+  EXPECT_LT(s20.region.area_upper, s80.region.area_lower);
+  EXPECT_LE(s80.region.area_upper, ws.area() * (1 + 1e-12));
+  EXPECT_LE(s20.region.area_upper, small.area_upper);
+  EXPECT_GE(s20.region.area_lower, small.area_lower);
+}
+
+TEST(LevelSets, PaminsaReactionLimitedRegionAgainstSampling) {
+  const auto s = mechanisms::ThreeRpr::symmetric(0.35, 0.1, mechanisms::ThreeRprActuation::revolute, 25.0 * pi / 180);
+  const Box w = box(-0.3, -0.3, 0.3, 0.3);
+  const mechanisms::ThreeRpr m(s.base(), s.platform(), s.actuation(), s.orientation(), std::nullopt, w);
+  const auto c = criteria::three_rpr_reaction(m, mechanisms::Load{100.0, 5.0}, 0);
+  certified::LevelSetOptions o;
+  o.relative_tolerance = 1e-5;
+  o.build_regions = false;
+  const auto r = certified::sublevel_set(*c.surrogate, c.level(200.0), m.workspace(), c.within_test, o);
+  double err = 0.0;
+  const int n = 600;
+  const double est = grid_estimate(c, 200.0, w, n, err);
+  const double slack = 8.0 * (w.width() / n) * w.width();
+  EXPECT_GT(est, 0.01);
+  EXPECT_LE(r.region.area_lower, est + slack);
+  EXPECT_GE(r.region.area_upper, est - slack);
+  // Undecided cells remain along an arc of the singular circle where R_1 stays
+  // bounded (0/0): the width is limited by the depth there.
+  EXPECT_LE(r.region.width(), 2e-4 * r.region.area_upper);
+  // R_max = 110 N gives a smaller region inside (seed 004 fig. 13).
+  const auto r110 = certified::sublevel_set(*c.surrogate, c.level(110.0), m.workspace(), c.within_test, o);
+  EXPECT_LT(r110.region.area_upper, r.region.area_lower);
+  EXPECT_GT(r110.region.area_lower, 0.0);
+}
+
+}  // namespace
