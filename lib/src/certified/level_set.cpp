@@ -656,9 +656,15 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
   LevelSetResult r = run_once(constraints, within, within_test, options, 0.0);
   // One retry with a tighter τ when the estimate of area or curve length was off.
   const double width = r.region.area_upper - r.region.area_lower;
-  if (options.trace && width > options.relative_tolerance * r.region.area_upper && r.traced_width > 0.5 * width) {
-    const double tau = r.tolerance_per_length * 0.5 * options.relative_tolerance * r.region.area_upper / width;
-    r = run_once(constraints, within, within_test, options, tau);
+  if (options.trace && width > options.relative_tolerance * r.region.area_upper) {
+    LevelSetOptions o = options;
+    double tau = 0.0;
+    if (r.traced_width > 0.5 * width) {
+      tau = r.tolerance_per_length * 0.5 * options.relative_tolerance * r.region.area_upper / width;
+    } else {
+      o.refine_depth = std::min(40, options.refine_depth + 4);  // undecided cells dominate: go deeper
+    }
+    r = run_once(constraints, within, within_test, o, tau);
   }
   return r;
 }

@@ -104,8 +104,10 @@ struct ThreeRprTwist {
   std::array<Point, 3> c, e;
   bool revolute = true;
   int leg = 0;
-  // Which quantity: 0 = R_i,max, 1 = |v_B_i|².
+  // Which quantity: 0 = R_i,max, 1 = |v_B_i|², 2 = -det_sign det A' (<= 0 in
+  // the assembly mode of the reference point: no type-2 singularity crossed).
   int what = 0;
+  double det_sign = 1.0;
   double f = 0.0, m = 0.0;
   std::optional<Box> window;
   std::optional<std::array<std::array<double, 2>, 3>> limits;
@@ -156,6 +158,7 @@ struct ThreeRprTwist {
     using std::sqrt;
     using certified::abs;
     const Parts<T> p = parts(x, y);
+    if (what == 2) return -det_sign * p.det;
     if (what == 1) {
       // v_B_i = v_P + ω J c_i: |v_B_i|² = ρ_i² |(w0 - w2 c_iy, w1 + w2 c_ix)|² / det².
       const Point ci = c[static_cast<std::size_t>(leg)];
@@ -167,6 +170,7 @@ struct ThreeRprTwist {
     return sqrt(p.rho2) * num / abs(p.det);
   }
   CellState domain(const Box& b) const {
+    if (what == 2) return CellState::inside;  // a polynomial
     const Parts<Interval> p = parts(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y));
     if (p.det.contains_zero() || p.rho2.lo <= 0.0) return CellState::undecided;
     return CellState::inside;
@@ -258,6 +262,24 @@ CriterionField three_rpr_reaction(const mechanisms::ThreeRpr& mechanism, const m
   return c;
 }
 
+CriterionField three_rpr_assembly_mode(const mechanisms::ThreeRpr& mechanism, Point reference) {
+  ThreeRprTwist impl(mechanism, 0, 2, mechanisms::Load{});
+  const double d = impl.parts<double>(reference.x, reference.y).det;
+  if (!(d != 0.0) || !std::isfinite(d)) {
+    throw std::invalid_argument("three_rpr_assembly_mode: the reference point is type-2 singular");
+  }
+  impl.det_sign = d > 0.0 ? 1.0 : -1.0;
+  CriterionField c;
+  c.name = "assembly_mode";
+  c.unit = "";
+  c.key = "three_rpr.assembly";
+  c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
+  c.level = [](double) { return 0.0; };
+  c.value = [impl](Point p) { return impl.eval<double>(p.x, p.y); };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
+  return c;
+}
+
 CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, int leg) {
   if (leg < 0 || leg > 2) throw std::invalid_argument("three_rpr_pressure_angle: leg must be 0, 1 or 2");
   const ThreeRprTwist impl(mechanism, leg, 1, mechanisms::Load{});
@@ -310,6 +332,10 @@ std::vector<CriterionField> fields_for(const io::MechanismFile& file, const std:
         out.push_back(three_rpr_pressure_angle(*rpr, leg - 1));
       }
     }
+    // The platform stays in the assembly mode of the workspace's centre (it
+    // cannot cross the type-2 singularity, seed 004 fig. 12's dashed curve).
+    const geometry::Box b = rpr->bounds();
+    out.push_back(three_rpr_assembly_mode(*rpr, {0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)}));
     return out;
   }
   throw io::InputError(file.path + ": certified level sets are implemented for five_bar and three_rpr, not " +

@@ -49,11 +49,15 @@ CriterionField five_bar_pressure_angle(const mechanisms::FiveBar& mechanism);
 CriterionField five_bar_reaction(const mechanisms::FiveBar& mechanism, double force_N);
 /// 3-RPR at its file orientation: R_i,max of leg `leg` (0-based), N.
 CriterionField three_rpr_reaction(const mechanisms::ThreeRpr& mechanism, const mechanisms::Load& load, int leg);
+/// 3-RPR assembly mode of `reference`: field -sign(det A(reference)) det A'
+/// (<= 0 on the side of the type-2 singularity curve that holds `reference`).
+CriterionField three_rpr_assembly_mode(const mechanisms::ThreeRpr& mechanism, geometry::Point reference);
 /// 3-RPR pressure angle α_i of leg `leg` (0-based), degrees.
 CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, int leg);
 
 /// The fields of a criterion for a mechanism file, one per limited leg (their
-/// sub-level sets are intersected). `name`: "pressure_angle" or "reaction".
+/// sub-level sets are intersected; for the 3-RPR also the assembly mode of the
+/// workspace's centre). `name`: "pressure_angle" or "reaction".
 /// Throws io::InputError when the mechanism does not support it.
 std::vector<CriterionField> fields_for(const io::MechanismFile& file, const std::string& name);
 

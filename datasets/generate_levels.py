@@ -1,0 +1,37 @@
+#!/usr/bin/env python3
+"""Criteria datasets of seed 004 (issue 5): DexTAR with alpha_max in {20, 40, 60, 80} deg
+for each working mode (fig. 10, 16 files) and the planar PAMINSA with phi in {0, 25, 50} deg
+and R_max in {200, 110} N (fig. 13, 6 files). Derived from the base datasets."""
+import json
+import os
+
+here = os.path.dirname(os.path.abspath(__file__))
+modes = {"pp": "(+1, +1)", "pm": "(+1, -1)", "mp": "(-1, +1)", "mm": "(-1, -1)"}
+for mode in modes:
+    base = json.load(open(os.path.join(here, f"five_bar_dextar_{mode}.json")))
+    for alpha in (20, 40, 60, 80):
+        d = dict(base)
+        d["name"] = f"DexTAR five-bar, working mode {modes[mode]}, pressure angle <= {alpha} deg"
+        d["criteria"] = {"max_pressure_angle_deg": float(alpha)}
+        d["source"] = dict(base.get("source", {}))
+        d["source"]["figure"] = f"Fig. 10 (workspace limited by alpha_max = {alpha} deg), working mode {modes[mode]}"
+        with open(os.path.join(here, f"five_bar_dextar_{mode}_alpha{alpha}.json"), "w") as f:
+            json.dump(d, f, indent=2)
+            f.write("\n")
+
+base = json.load(open(os.path.join(here, "three_rpr_paminsa.json")))
+for phi in (0, 25, 50):
+    for rmax in (200, 110):
+        d = dict(base)
+        d["name"] = f"Planar PAMINSA, phi = {phi} deg, R_max = {rmax} N at joint B1"
+        d["orientation_deg"] = float(phi)
+        # The type-2 singular circle (radius <= 0.296 m for these phi) lies inside the window,
+        # and the region is taken in the assembly mode of the centre, so the window never binds.
+        d["analysis_window"] = [[-0.32, -0.32], [0.32, 0.32]]
+        d["criteria"] = {"load": {"force_N": 100.0, "moment_Nm": 5.0}, "max_reaction_N": float(rmax),
+                         "reaction_legs": [1]}
+        d["source"] = dict(base.get("source", {}))
+        d["source"]["figure"] = f"Fig. 13 (constant-orientation workspace, phi = {phi} deg, R_max = {rmax} N)"
+        with open(os.path.join(here, f"three_rpr_paminsa_phi{phi}_r{rmax}.json"), "w") as f:
+            json.dump(d, f, indent=2)
+            f.write("\n")
