@@ -23,9 +23,23 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
     const auto start = std::chrono::steady_clock::now();
     const io::MechanismFile mech = io::load_mechanism(*file);
     if (mech.criteria.any()) {
-      throw io::InputError(*file + ": criteria limits are not handled by `area` yet "
-                           "(the certified level-set regions are a later milestone); "
-                           "remove `criteria` limits to get the reachable workspace");
+      // Criteria limits: certified level sets (levels.cpp, docs/theory/level_sets.md).
+      Json report = criteria_area_report(mech, 1e-6);
+      report["time_ms"] = elapsed_ms(start);
+      if (*json) {
+        print_json(report);
+      } else {
+        std::printf("%s (%s)\n", mech.name.c_str(), mech.mechanism.c_str());
+        const double lo = report["area_lower"], hi = report["area_upper"];
+        std::printf("area       %.10g %s  (certified: %.12g <= area <= %.12g, width %.2g of the area)\n",
+                    0.5 * (lo + hi), area_unit(mech).c_str(), lo, hi, (hi - lo) / hi);
+        for (const auto& c : report["criteria"]) {
+          std::printf("           limited by %s <= %g\n", c["criterion"].get<std::string>().c_str(),
+                      c["threshold"].get<double>());
+        }
+        std::printf("time       %.3f ms\n", report["time_ms"].get<double>());
+      }
+      return 0;
     }
     const certified::CertifiedRegion enclosure = workspace_enclosure_of(mech);
     // Exact: the region itself. Certified: the outer enclosure's components

@@ -32,6 +32,10 @@ void add_batch(CLI::App& app, std::vector<Command>& commands);
 void add_plot(CLI::App& app, std::vector<Command>& commands);
 void add_grid(CLI::App& app, std::vector<Command>& commands);     // grid baseline
 void add_compare(CLI::App& app, std::vector<Command>& commands);  // exact vs grid
+void add_levels(CLI::App& app, std::vector<Command>& commands);   // criterion bands (levels.cpp)
+/// `pkmws area` for a file with `criteria` limits: certified area bounds of the
+/// limited workspace (levels.cpp); `tolerance` relative to the area.
+Json criteria_area_report(const io::MechanismFile& mech, double tolerance);
 /// Writes the curve charts of a 1-DOF file into `dir`; returns the file names.
 std::vector<std::string> write_curve_figures(const io::MechanismFile& mech, const std::string& dir);
 

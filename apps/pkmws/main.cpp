@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   pkmws::cli::add_plot(app, commands);
   pkmws::cli::add_grid(app, commands);
   pkmws::cli::add_compare(app, commands);
+  pkmws::cli::add_levels(app, commands);
   pkmws::cli::add_explain(app, commands);
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
