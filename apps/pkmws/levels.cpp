@@ -55,6 +55,17 @@ BandRun run_bands(const io::MechanismFile& mech, const std::string& name, const 
   return run;
 }
 
+std::string escape(const std::string& t) {
+  std::string o;
+  for (char c : t) {
+    if (c == '<') o += "&lt;";
+    else if (c == '>') o += "&gt;";
+    else if (c == '&') o += "&amp;";
+    else o += c;
+  }
+  return o;
+}
+
 // Colours from good (green) to bad (red), one per band.
 std::string band_colour(std::size_t k, std::size_t n) {
   const double t = n <= 1 ? 0.0 : static_cast<double>(k) / static_cast<double>(n - 1);
@@ -75,29 +86,43 @@ std::string svg_figure(const io::MechanismFile& mech, const BandRun& run) {
   auto X = [&](double x) { return (x - box.min.x) * scale; };
   auto Y = [&](double y) { return (box.max.y - y) * scale; };
   std::ostringstream s;
-  s.precision(7);
+  s.precision(5);
   const double width = box.width() * scale, height = box.height() * scale;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width + 220 << "\" height=\"" << height + 40
     << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  s << "<text x=\"8\" y=\"16\">" << mech.name << ": " << run.field.name << " (" << run.field.unit << ")</text>\n";
+   s << "<text x=\"8\" y=\"16\">" << escape(mech.name) << ": " << run.field.name << " (" << run.field.unit << ")</text>\n";
   s << "<g transform=\"translate(0,24)\">\n";
-  // Bands: the sub-level pieces of the largest level first, then smaller ones on top.
+  // Bands: the sub-level pieces of the largest level first, then smaller ones
+  // on top, clipped to the workspace (cells across its boundary overhang it).
+  s << "<clipPath id=\"ws\">\n";
+  for (const auto& loop : ws.loops()) {
+    if (loop.hole) continue;
+    s << "<polygon points=\"";
+    for (const auto& p : loop.polyline(1e-4 * std::max(w, h))) s << X(p.x) << "," << Y(p.y) << " ";
+    s << "\"/>\n";
+  }
+  s << "</clipPath>\n<g clip-path=\"url(#ws)\">\n";
   const std::size_t n = run.levels.size();
   for (std::size_t kk = n; kk-- > 0;) {
     const auto& r = run.sub[kk];
     const std::string c = band_colour(kk, n);
     s << "<g fill=\"" << c << "\" stroke=\"none\">\n";
     for (const auto& b : r.inside_boxes) {
+      if (b.width() * scale < 0.25 || b.height() * scale < 0.25) continue;  // below a pixel: invisible
       s << "<rect x=\"" << X(b.min.x) << "\" y=\"" << Y(b.max.y) << "\" width=\"" << b.width() * scale
         << "\" height=\"" << b.height() * scale << "\"/>\n";
     }
     for (const auto& poly : r.inner_polygons) {
+      geometry::Box pb;
+      for (const auto& p : poly) pb.expand(p);
+      if (pb.width() * scale < 0.25 && pb.height() * scale < 0.25) continue;
       s << "<polygon points=\"";
       for (const auto& p : poly) s << X(p.x) << "," << Y(p.y) << " ";
       s << "\"/>\n";
     }
     s << "</g>\n";
   }
+  s << "</g>\n";
   // Mask outside the workspace: its boundary drawn over the cells.
   s << "<g fill=\"none\" stroke=\"black\" stroke-width=\"1.5\">\n";
   for (const auto& loop : ws.loops()) {
@@ -111,6 +136,9 @@ std::string svg_figure(const io::MechanismFile& mech, const BandRun& run) {
   s << "<g fill=\"none\" stroke=\"#202020\" stroke-width=\"0.7\">\n";
   for (const auto& r : run.sub) {
     for (const auto& piece : r.curves) {
+      geometry::Box pb;
+      for (const auto& p : piece) pb.expand(p);
+      if (pb.width() * scale < 0.25 && pb.height() * scale < 0.25) continue;
       s << "<polyline points=\"";
       for (const auto& p : piece) s << X(p.x) << "," << Y(p.y) << " ";
       s << "\"/>\n";
@@ -118,7 +146,8 @@ std::string svg_figure(const io::MechanismFile& mech, const BandRun& run) {
   }
   s << "</g>\n";
   // The mechanism at a sample pose, with its type-2 singular curves dashed.
-  const mechanisms::Pose pose = sample_pose(mech, ws);
+  mechanisms::Pose pose = sample_pose(mech, ws);
+  if (const auto* rpr = dynamic_cast<const mechanisms::ThreeRpr*>(mech.model.get())) pose.phi = rpr->orientation();
   const mechanisms::Drawing d = mech.model->draw(pose);
   s << "<g fill=\"none\" stroke=\"#303080\" stroke-width=\"1.2\" stroke-dasharray=\"6,4\">\n";
   for (const auto& c : d.singular_curves) {
@@ -138,7 +167,7 @@ std::string svg_figure(const io::MechanismFile& mech, const BandRun& run) {
     const double y = 20.0 + 22.0 * static_cast<double>(k);
     char label[160];
     if (k == 0) {
-      std::snprintf(label, sizeof label, "<= %g: [%.6g, %.6g]", run.levels[k], run.bands[k].area_lower, run.bands[k].area_upper);
+      std::snprintf(label, sizeof label, "&#8804; %g: [%.6g, %.6g]", run.levels[k], run.bands[k].area_lower, run.bands[k].area_upper);
     } else {
       std::snprintf(label, sizeof label, "%g..%g: [%.6g, %.6g]", run.levels[k - 1], run.levels[k], run.bands[k].area_lower,
                     run.bands[k].area_upper);
