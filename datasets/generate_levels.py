@@ -35,3 +35,16 @@ for phi in (0, 25, 50):
         with open(os.path.join(here, f"three_rpr_paminsa_phi{phi}_r{rmax}.json"), "w") as f:
             json.dump(d, f, indent=2)
             f.write("\n")
+
+# Biglide, simplified scheme (seed 003 fig. 8): the workspace where both
+# actuators move at most t times faster than the tool along y, V_i / V_y <= t.
+base = json.load(open(os.path.join(here, "biglide_simplified.json")))
+for ratio in (2,):
+    d = dict(base)
+    d["name"] = f"Biglide, simplified scheme, velocity ratio V_i/V_y <= {ratio}"
+    d["criteria"] = {"max_velocity_ratio": float(ratio)}
+    d["source"] = dict(base.get("source", {}))
+    d["source"]["figure"] = f"Fig. 8 (velocity ratio V/V_y), sub-level set V_i/V_y <= {ratio} for both sliders"
+    with open(os.path.join(here, f"biglide_simplified_vratio{ratio}.json"), "w") as f:
+        json.dump(d, f, indent=2)
+        f.write("\n")

@@ -195,6 +195,88 @@ struct ThreeRprTwist {
   }
 };
 
+// ---------------------------------------------------------------------------
+// Biglide velocity ratio V_i / V_y = |∂q_i/∂y| (seed 003 fig. 8) for the
+// paper's branches b_1 = b_2 = -1 (eq. 5-8), docs/theory/biglide.md:
+//   h1 = y + B, w1 = sqrt(l3² - h1²), ∂q1/∂y = -b1 h1 / w1,
+//   ∂v/∂y = (b1 h1 / w1, 1), ∂J/∂y = (∂q1/∂y, 0) + M ∂v/∂y,
+//   J_y = -B - b1 w1 M10 + M11 h1, h2 = B - J_y, w2 = sqrt(l2² - h2²),
+//   ∂q2/∂y = ∂J_x/∂y + b2 h2 ∂J_y/∂y / w2,
+// M = (l1 / l3) R(γ) (identity for the simplified scheme). Surrogate:
+// s_i = (∂q_i/∂y)², level(t) = t².
+struct BiglideVelocityRatio {
+  double b = 0.0, l2 = 0.0, l3 = 0.0;
+  double m00 = 1.0, m01 = 0.0, m10 = 0.0, m11 = 1.0;
+  std::array<std::array<double, 2>, 2> stroke{};
+  int leg = 0;
+  static constexpr double b1 = -1.0, b2 = -1.0;  // seed 003 eq. 5-8: minus roots
+
+  explicit BiglideVelocityRatio(const mechanisms::Biglide& m, int leg_index) : leg(leg_index) {
+    const auto& p = m.params();
+    b = p.half_width;
+    l2 = p.rods[1];
+    l3 = m.tool_distance();
+    const double k = p.rods[0] / l3, c = std::cos(m.gamma()), s = std::sin(m.gamma());
+    m00 = k * c;
+    m01 = -k * s;
+    m10 = k * s;
+    m11 = k * c;
+    stroke = p.strokes;
+  }
+  template <class T> struct Parts {
+    T h1, w1sq, dq1, h2, w2sq, dq2;
+  };
+  template <class T> Parts<T> parts(const T& x, const T& y) const {
+    using certified::max;
+    using certified::sqr;
+    using certified::sqrt;
+    using std::sqrt;
+    Parts<T> r;
+    r.h1 = y + T(b);
+    r.w1sq = T(l3 * l3) - sqr(r.h1);
+    const T w1 = sqrt(max(r.w1sq, 0.0));
+    r.dq1 = T(-b1) * r.h1 / w1;
+    const T dvx = T(b1) * r.h1 / w1;
+    const T jy = T(-b) - T(b1 * m10) * w1 + T(m11) * r.h1;
+    const T djx = r.dq1 + T(m00) * dvx + T(m01);
+    const T djy = T(m10) * dvx + T(m11);
+    r.h2 = T(b) - jy;
+    r.w2sq = T(l2 * l2) - sqr(r.h2);
+    const T w2 = sqrt(max(r.w2sq, 0.0));
+    r.dq2 = djx + T(b2) * r.h2 * djy / w2;
+    (void)x;
+    return r;
+  }
+  template <class T> T eval(const T& x, const T& y) const {
+    const Parts<T> p = parts(x, y);
+    return certified::sqr(leg == 0 ? p.dq1 : p.dq2);
+  }
+  // Smooth where both rods are strictly off the perpendicular (w_i > 0).
+  CellState domain(const Box& box) const {
+    const Parts<Interval> p = parts(Interval(box.min.x, box.max.x), Interval(box.min.y, box.max.y));
+    if (p.w1sq.hi <= 0.0 || p.w2sq.hi <= 0.0) return CellState::outside;
+    return p.w1sq.lo > 0.0 && p.w2sq.lo > 0.0 ? CellState::inside : CellState::undecided;
+  }
+  // Box ⊆ workspace: the chain closes with both sliders inside their strokes.
+  CellState within(const Box& box) const {
+    using certified::max;
+    using certified::sqr;
+    using certified::sqrt;
+    const Interval x(box.min.x, box.max.x), y(box.min.y, box.max.y);
+    const Parts<Interval> p = parts(x, y);
+    if (p.w1sq.hi < 0.0 || p.w2sq.hi < 0.0) return CellState::outside;
+    const Interval w1 = sqrt(max(p.w1sq, 0.0));
+    const Interval q1 = x + Interval(b1) * w1;
+    const Interval jx = x + Interval(b1 * (1.0 - m00)) * w1 + Interval(m01) * p.h1;
+    const Interval q2 = jx + Interval(b2) * sqrt(max(p.w2sq, 0.0));
+    if (q1.hi < stroke[0][0] || q1.lo > stroke[0][1] || q2.hi < stroke[1][0] || q2.lo > stroke[1][1])
+      return CellState::outside;
+    const bool inside = p.w1sq.lo > 0.0 && p.w2sq.lo > 0.0 && q1.lo >= stroke[0][0] && q1.hi <= stroke[0][1] &&
+                        q2.lo >= stroke[1][0] && q2.hi <= stroke[1][1];
+    return inside ? CellState::inside : CellState::undecided;
+  }
+};
+
 const mechanisms::FiveBar* as_five_bar(const io::MechanismFile& file) {
   return dynamic_cast<const mechanisms::FiveBar*>(file.model.get());
 }
@@ -225,6 +307,23 @@ CriterionField five_bar_pressure_angle(const mechanisms::FiveBar& mechanism) {
   };
   c.value = [impl](Point p) { return five_bar_alpha_deg(impl, p); };
   c.within_test = [impl](const Box& b) { return impl.domain(b); };
+  return c;
+}
+
+CriterionField biglide_velocity_ratio(const mechanisms::Biglide& mechanism, int leg) {
+  const BiglideVelocityRatio impl(mechanism, leg);
+  CriterionField c;
+  c.name = "velocity_ratio";
+  c.unit = "V_i/V_y";
+  c.key = "biglide.vratio" + std::to_string(leg + 1);
+  c.surrogate = std::make_shared<certified::TemplateField<BiglideVelocityRatio>>(impl);
+  c.level = [](double ratio) { return ratio * ratio; };  // V_i/V_y <= t  <=>  (∂q_i/∂y)² <= t²
+  const mechanisms::Biglide* m = &mechanism;
+  c.value = [m, leg](Point p) {
+    if (!m->reachable({p.x, p.y, 0.0})) return nan;
+    return m->velocity_ratio_y(p)[static_cast<std::size_t>(leg)];
+  };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
   return c;
 }
 
@@ -303,8 +402,23 @@ CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, i
 }
 
 std::vector<CriterionField> fields_for(const io::MechanismFile& file, const std::string& name) {
-  if (name != "pressure_angle" && name != "reaction") {
-    throw io::InputError("unknown criterion \"" + name + "\" (expected pressure_angle or reaction)");
+  if (name != "pressure_angle" && name != "reaction" && name != "velocity_ratio") {
+    throw io::InputError("unknown criterion \"" + name + "\" (expected pressure_angle, reaction or velocity_ratio)");
+  }
+  if (const auto* bg = dynamic_cast<const mechanisms::Biglide*>(file.model.get())) {
+    if (name != "velocity_ratio") {
+      throw io::InputError(file.path + ": for the biglide the certified level sets are of the velocity ratio "
+                           "(criteria.max_velocity_ratio); pkmws eval gives pressure angles and reactions at a pose");
+    }
+    if (bg->real_scheme()) {
+      throw io::InputError(file.path + ": velocity-ratio level sets need the exact workspace of the simplified "
+                           "scheme; the real scheme's workspace is itself certified (coupler-curve boundary)");
+    }
+    return {biglide_velocity_ratio(*bg, 0), biglide_velocity_ratio(*bg, 1)};
+  }
+  if (name == "velocity_ratio") {
+    throw io::InputError(file.path + ": velocity-ratio level sets are implemented for the biglide (seed 003), not " +
+                         file.mechanism);
   }
   if (const auto* fb = as_five_bar(file)) {
     for (int i = 0; i < 2; ++i) {
@@ -347,10 +461,7 @@ std::vector<Limit> file_limits(const io::MechanismFile& file) {
   const auto& c = file.criteria;
   if (c.max_pressure_angle_deg) out.push_back({"pressure_angle", *c.max_pressure_angle_deg});
   if (c.max_reaction_N) out.push_back({"reaction", *c.max_reaction_N});
-  if (c.max_velocity_ratio) {
-    throw io::InputError(file.path + ": criteria.max_velocity_ratio: certified level sets of the velocity ratio "
-                         "are not implemented yet (use pkmws eval for point values)");
-  }
+  if (c.max_velocity_ratio) out.push_back({"velocity_ratio", *c.max_velocity_ratio});
   return out;
 }
 

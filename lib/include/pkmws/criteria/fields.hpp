@@ -10,6 +10,8 @@
 //  * planar 3-DOF (3-RPR) reaction of leg i: R_i,max = f |v_P,i| + |m| |ω_i|
 //    (SPEC §1.5), s = R_i itself (N); pressure angle of leg i:
 //    cos α_i = 1 / |v_B_i| (seed 004: r_i . v_i = 1), s = |v_B_i|², level = 1 / cos²α.
+//  * biglide velocity ratio V_i / V_y = |∂q_i/∂y| (seed 003 fig. 8), one field
+//    per leg: s = (∂q_i/∂y)², level(t) = t².
 //
 // Units: lengths in the mechanism's unit, angles in degrees at this interface,
 // forces in N.
@@ -22,6 +24,7 @@
 
 #include "pkmws/certified/level_set.hpp"
 #include "pkmws/io/mechanism_file.hpp"
+#include "pkmws/mechanisms/biglide.hpp"
 #include "pkmws/mechanisms/five_bar.hpp"
 #include "pkmws/mechanisms/three_rpr.hpp"
 
@@ -55,9 +58,14 @@ CriterionField three_rpr_assembly_mode(const mechanisms::ThreeRpr& mechanism, ge
 /// 3-RPR pressure angle α_i of leg `leg` (0-based), degrees.
 CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, int leg);
 
+/// Biglide velocity ratio V_i / V_y = |∂q_i/∂y| of leg `leg` (0-based; seed 003
+/// fig. 8), paper's branches; surrogate (∂q_i/∂y)².
+CriterionField biglide_velocity_ratio(const mechanisms::Biglide& mechanism, int leg);
+
 /// The fields of a criterion for a mechanism file, one per limited leg (their
 /// sub-level sets are intersected; for the 3-RPR also the assembly mode of the
-/// workspace's centre). `name`: "pressure_angle" or "reaction".
+/// workspace's centre). `name`: "pressure_angle", "reaction" or (biglide)
+/// "velocity_ratio".
 /// Throws io::InputError when the mechanism does not support it.
 std::vector<CriterionField> fields_for(const io::MechanismFile& file, const std::string& name);
 

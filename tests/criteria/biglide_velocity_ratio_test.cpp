@@ -1,0 +1,98 @@
+// Certified sub-level sets of the biglide velocity ratio V_i/V_y = |∂q_i/∂y|
+// (seed 003 fig. 8) over the exact simplified-scheme workspace.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "pkmws/criteria/fields.hpp"
+#include "pkmws/io/mechanism_file.hpp"
+#include "pkmws/mechanisms/biglide.hpp"
+
+namespace {
+
+using namespace pkmws;
+using geometry::Point;
+
+io::MechanismFile simplified() {
+  return io::load_mechanism(std::string(PKMWS_SOURCE_DIR) + "/datasets/biglide_simplified.json");
+}
+
+TEST(BiglideVelocityRatio, SurrogateIsTheSquaredRatioWithItsDerivatives) {
+  const auto f = simplified();
+  const auto& m = dynamic_cast<const mechanisms::Biglide&>(*f.model);
+  const auto box = m.bounds();
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> ux(box.min.x, box.max.x), uy(box.min.y, box.max.y);
+  int checked = 0;
+  for (int n = 0; n < 2000 && checked < 300; ++n) {
+    const Point p{ux(rng), uy(rng)};
+    if (!m.reachable({p.x, p.y, 0})) continue;
+    const auto ratio = m.velocity_ratio_y(p);
+    for (int leg = 0; leg < 2; ++leg) {
+      const auto c = criteria::biglide_velocity_ratio(m, leg);
+      const double r = ratio[static_cast<std::size_t>(leg)];
+      if (!(r < 50.0)) continue;  // near a type-1 singularity
+      EXPECT_NEAR(c.surrogate->value(p), r * r, 1e-9 * (1 + r * r));
+      EXPECT_NEAR(c.value(p), r, 1e-12 * (1 + r));
+      // Jet against central differences of the surrogate.
+      const double h = 1e-4;
+      const auto j = c.surrogate->jet(p);
+      const double fx = (c.surrogate->value({p.x + h, p.y}) - c.surrogate->value({p.x - h, p.y})) / (2 * h);
+      const double fy = (c.surrogate->value({p.x, p.y + h}) - c.surrogate->value({p.x, p.y - h})) / (2 * h);
+      EXPECT_NEAR(j.dx, fx, 1e-5 * (1 + std::abs(fx)));
+      EXPECT_NEAR(j.dy, fy, 1e-5 * (1 + std::abs(fy)));
+      // The interval enclosure of a small box holds the point value.
+      const geometry::Box b{{p.x - 0.5, p.y - 0.5}, {p.x + 0.5, p.y + 0.5}};
+      if (c.surrogate->domain(b) == certified::CellState::inside) {
+        const auto e = c.surrogate->enclose(b);
+        EXPECT_LE(e.lo, r * r);
+        EXPECT_GE(e.hi, r * r);
+      }
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 300);
+}
+
+TEST(BiglideVelocityRatio, CertifiedBoundsContainADenseGridEstimate) {
+  const auto f = simplified();
+  const auto& m = dynamic_cast<const mechanisms::Biglide&>(*f.model);
+  certified::LevelSetOptions o;
+  o.relative_tolerance = 1e-4;
+  const double limit = 2.0;
+  const auto r = criteria::limited_workspace(f, {{"velocity_ratio", limit}}, o);
+  ASSERT_LT(r.region.area_lower, r.region.area_upper);
+  EXPECT_LT(r.region.width(), 1e-3 * r.region.area_upper);
+  EXPECT_LT(r.region.area_upper, m.workspace().area());  // the limit removes a part
+  // Dense grid: reachable and both ratios <= limit at cell centres; its error is
+  // at most about (boundary length) x (cell diagonal).
+  const auto box = m.bounds();
+  const int n = 1500;
+  const double dx = box.width() / n, dy = box.height() / n;
+  long count = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Point p{box.min.x + (i + 0.5) * dx, box.min.y + (j + 0.5) * dy};
+      if (!m.reachable({p.x, p.y, 0})) continue;
+      const auto v = m.velocity_ratio_y(p);
+      count += (v[0] <= limit && v[1] <= limit) ? 1 : 0;
+    }
+  const double grid = static_cast<double>(count) * dx * dy;
+  const double slack = 2.0 * (box.width() + box.height()) * 2.0 * std::hypot(dx, dy);
+  EXPECT_GE(grid, r.region.area_lower - slack);
+  EXPECT_LE(grid, r.region.area_upper + slack);
+  EXPECT_NEAR(grid, r.region.area_estimate(), 2e-3 * grid);
+}
+
+TEST(BiglideVelocityRatio, OtherMechanismsAndTheRealSchemeAreRefusedClearly) {
+  const auto real = io::load_mechanism(std::string(PKMWS_SOURCE_DIR) + "/datasets/biglide_real.json");
+  EXPECT_THROW(criteria::fields_for(real, "velocity_ratio"), io::InputError);
+  EXPECT_THROW(criteria::fields_for(simplified(), "pressure_angle"), io::InputError);
+  const auto dextar = io::load_mechanism(std::string(PKMWS_SOURCE_DIR) + "/datasets/five_bar_dextar_pp.json");
+  EXPECT_THROW(criteria::fields_for(dextar, "velocity_ratio"), io::InputError);
+}
+
+}  // namespace
