@@ -279,7 +279,7 @@ TEST(LevelSets, PaminsaReactionLimitedRegionAgainstSampling) {
   const mechanisms::ThreeRpr m(s.base(), s.platform(), s.actuation(), s.orientation(), std::nullopt, w);
   const auto c = criteria::three_rpr_reaction(m, mechanisms::Load{100.0, 5.0}, 0);
   certified::LevelSetOptions o;
-  o.relative_tolerance = 1e-5;
+  o.relative_tolerance = 1e-3;  // fast; `pkmws area` on the PAMINSA datasets aims at 1e-6
   o.build_regions = false;
   const auto r = certified::sublevel_set(*c.surrogate, c.level(200.0), m.workspace(), c.within_test, o);
   double err = 0.0;
@@ -291,7 +291,7 @@ TEST(LevelSets, PaminsaReactionLimitedRegionAgainstSampling) {
   EXPECT_GE(r.region.area_upper, est - slack);
   // Undecided cells remain along an arc of the singular circle where R_1 stays
   // bounded (0/0): the width is limited by the depth there.
-  EXPECT_LE(r.region.width(), 2e-4 * r.region.area_upper);
+  EXPECT_LE(r.region.width(), 2e-3 * r.region.area_upper);
   // R_max = 110 N gives a smaller region inside (seed 004 fig. 13).
   const auto r110 = certified::sublevel_set(*c.surrogate, c.level(110.0), m.workspace(), c.within_test, o);
   EXPECT_LT(r110.region.area_upper, r.region.area_lower);
