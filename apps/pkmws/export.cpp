@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "bodies_cli.hpp"
+#include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/export.hpp"
 
 namespace pkmws::cli {
@@ -29,8 +30,8 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
                 "without collision) instead of the computed workspace");
   sub->add_option("--bound", a->bound,
                   "Certified workspaces (boundary not made of arcs and segments, e.g. the real-scheme "
-                  "biglide): export the outer enclosure (every reachable point, default) or the inner "
-                  "one (only reachable points)")
+                  "biglide, or files with criteria limits): export the outer enclosure (every point of "
+                  "the region, default) or the inner one (only points of the region)")
       ->check(CLI::IsMember({"inner", "outer"}));
   commands.push_back({sub, [a] {
     const io::ExportFormat format = io::parse_export_format(a->format);
@@ -38,7 +39,25 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       throw io::InputError("--tolerance: must be a positive length");
     }
     const io::MechanismFile mech = io::load_mechanism(a->file);
-    const certified::CertifiedRegion enclosure = workspace_enclosure_of(mech);
+    // With criteria limits (seed 004 figs. 10, 13): the certified limited
+    // region, its enclosures built at cell resolution.
+    const bool limited = mech.criteria.any() && !a->real;
+    std::string limited_caption;
+    certified::CertifiedRegion enclosure;
+    if (limited) {
+      certified::LevelSetOptions lo;
+      lo.relative_tolerance = 1e-4;
+      lo.build_regions = true;
+      const auto lw = criteria::limited_workspace(mech, criteria::file_limits(mech), lo);
+      enclosure = lw.region;
+      for (const auto& l : criteria::file_limits(mech)) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "%s%s <= %g", limited_caption.empty() ? "" : ", ", l.name.c_str(), l.threshold);
+        limited_caption += buf;
+      }
+    } else {
+      enclosure = workspace_enclosure_of(mech);
+    }
     geometry::Region region = enclosure.exact || a->bound == "outer" ? enclosure.outer : enclosure.inner;
     if (region.empty()) {
       throw io::InputError(a->file + ": the workspace is empty (impossible geometry): nothing to export");
@@ -65,8 +84,9 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
           if (!enclosure.exact) {
             // Certain part filled, the undecided band between the enclosures hatched grey.
             std::snprintf(caption, sizeof caption,
-                          "certified workspace: %.10g <= area <= %.10g %s (filled: certainly reachable; grey: "
-                          "undecided band of the quadtree)",
+                          "certified %s%s%s: %.10g <= area <= %.10g %s (filled: certainly inside; grey: "
+                          "undecided cells)",
+                          limited ? "workspace with " : "workspace", limited ? limited_caption.c_str() : "", "",
                           enclosure.area_lower, enclosure.area_upper, area_unit(mech).c_str());
             region = enclosure.inner;
             io::FigureOptions::Overlay band;

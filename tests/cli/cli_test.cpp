@@ -273,3 +273,23 @@ TEST_F(Cli, CertifiedWorkspaceReportsBoundsAndExportsEitherEnclosure) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(Cli, ExportHonoursCriteriaLimits) {
+  // The criteria-limited region, not the whole workspace: its inner enclosure
+  // is smaller than the DexTAR's reachable area (0.4156 m²) and contains the
+  // certified lower bound's worth of points.
+  const auto r = run("export " + dataset("five_bar_dextar_pm_alpha40.json") + " -f svg -o " + (dir_ / "a.svg").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(slurp(dir_ / "a.svg").find("certified workspace with pressure_angle"), std::string::npos);
+  const auto w = run("export " + dataset("five_bar_dextar_pm_alpha40.json") + " -f wkt --bound inner -o " +
+                     (dir_ / "a.wkt").string());
+  ASSERT_EQ(w.status, 0) << w.err;
+  const auto area = run("area " + dataset("five_bar_dextar_pm_alpha40.json") + " --json");
+  ASSERT_EQ(area.status, 0) << area.err;
+  const auto j = nlohmann::json::parse(area.out);
+  EXPECT_LT(j["area_upper"].get<double>(), 0.2);  // α <= 40° keeps 0.18125 m² of 0.41558
+}
+
+}  // namespace
