@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "pkmws/criteria/fields.hpp"
 #include "pkmws/grid/compare.hpp"
 #include "pkmws/io/export.hpp"
 
@@ -13,7 +14,7 @@ namespace pkmws::cli {
 namespace {
 
 std::string resolution(const grid::CompareRow& row) {
-  if (row.method == "exact") return "-";
+  if (row.method == "exact" || row.method == "certified") return "-";
   std::ostringstream s;
   if (row.method == "adaptive") {
     s << "depth " << row.depth << " (" << row.cells_per_side << "/side)";
@@ -110,9 +111,23 @@ void add_compare(CLI::App& app, std::vector<Command>& commands) {
     co.execution.threads = o->threads;
     if (!o->ladder.empty()) co.ladder = o->ladder;
     if (!o->depths.empty()) co.depths = o->depths;
+    // With criteria limits the grids sample the limited region and the
+    // reference is its certified area (one run: seconds, not microseconds).
+    std::shared_ptr<const mechanisms::Mechanism> model = mech.model;
+    if (mech.criteria.any()) {
+      model = criteria::limited_mechanism(mech);
+      co.exact_runs = 1;
+      co.reference = [&mech] {
+        certified::LevelSetOptions lo;
+        lo.relative_tolerance = 1e-6;
+        const auto lw = criteria::limited_workspace(mech, criteria::file_limits(mech), lo);
+        return grid::CompareOptions::Reference{lw.region.area_estimate(),
+                                               0.5 * lw.region.width() / lw.region.area_estimate(), "certified"};
+      };
+    }
     grid::CompareResult r;
     try {
-      r = grid::compare(*mech.model, co);
+      r = grid::compare(*model, co);
     } catch (const std::invalid_argument& e) {
       throw io::InputError(o->file + ": " + e.what());
     } catch (const std::logic_error& e) {
@@ -128,8 +143,9 @@ void add_compare(CLI::App& app, std::vector<Command>& commands) {
       return 0;
     }
     std::printf("%s (%s)\n", mech.name.c_str(), mech.mechanism.c_str());
-    std::printf("exact area %.15g %s, %.3f ms median of %d runs (build + area)\n", r.exact_area,
-                area_unit(mech).c_str(), r.exact_time_ms, co.exact_runs);
+    std::printf("%s area %.15g %s, %.3f ms median of %d runs (%s)\n", r.rows.front().method.c_str(), r.exact_area,
+                area_unit(mech).c_str(), r.exact_time_ms, co.exact_runs,
+                mech.criteria.any() ? "certified level sets of the file's criteria, 1e-6" : "build + area");
     std::printf("grid: %d thread%s, %s kernel\n\n", r.threads, r.threads == 1 ? "" : "s", r.isa.c_str());
     std::printf("%-10s %-22s %13s %20s %10s %10s %11s %9s\n", "method", "resolution", "points", "area", "error",
                 "guaranteed", "time ms", "x exact");

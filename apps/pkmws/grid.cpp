@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "cli.hpp"
+#include "pkmws/criteria/fields.hpp"
 #include "pkmws/grid/sampler.hpp"
 
 namespace pkmws::cli {
@@ -61,6 +62,10 @@ void add_grid(CLI::App& app, std::vector<Command>& commands) {
   sub->add_flag("--json", o->json, "Print one JSON object");
   commands.push_back({sub, [o] {
     const io::MechanismFile mech = io::load_mechanism(o->file);
+    // With criteria limits, a grid point counts when it is reachable and
+    // within every limit (the same fields as the certified level sets).
+    const std::shared_ptr<const mechanisms::Mechanism> model =
+        mech.criteria.any() ? criteria::limited_mechanism(mech) : mech.model;
     if (int(o->polar) + int(o->adaptive >= 0) + int(o->sweep) > 1) {
       throw io::InputError("grid: give at most one of --polar, --adaptive, --sweep");
     }
@@ -79,7 +84,7 @@ void add_grid(CLI::App& app, std::vector<Command>& commands) {
         // ~square cells at half the radius: 2 pi (R/2) / sectors = R / rings; a multiple of 4.
         po.sectors = std::max<std::size_t>(4, 4 * std::size_t(std::llround(std::numbers::pi * double(n) / 4.0)));
         po.certified_bounds = true;
-        const auto p = grid::polar(*mech.model, po, exec);
+        const auto p = grid::polar(*model, po, exec);
         r = p;
         report["rings"] = po.rings;
         report["sectors"] = po.sectors;
@@ -90,7 +95,7 @@ void add_grid(CLI::App& app, std::vector<Command>& commands) {
         grid::AdaptiveOptions ao;
         ao.base_cells = n;
         ao.depth = o->adaptive;
-        const auto a = grid::adaptive(*mech.model, ao, exec);
+        const auto a = grid::adaptive(*model, ao, exec);
         r = a;
         report["depth"] = a.cells_per_level.size() - 1;
         report["root_cells"] = n;
@@ -106,7 +111,7 @@ void add_grid(CLI::App& app, std::vector<Command>& commands) {
         grid::JointSweepOptions jo;
         jo.raster_cells = n;
         jo.samples = o->samples ? o->samples : 5 * n;
-        const auto s = grid::joint_sweep(*mech.model, jo, exec);
+        const auto s = grid::joint_sweep(*model, jo, exec);
         r = s;
         report["joint_samples"] = jo.samples;
         report["valid_poses"] = s.poses;
@@ -117,7 +122,7 @@ void add_grid(CLI::App& app, std::vector<Command>& commands) {
         grid::CartesianOptions co;
         co.cells_x = co.cells_y = n;
         co.certified_bounds = true;
-        r = grid::cartesian(*mech.model, co, exec);
+        r = grid::cartesian(*model, co, exec);
         description = "Cartesian " + std::to_string(n) + " x " + std::to_string(n) + " cells, cell-centre IK test";
       }
     } catch (const std::invalid_argument& e) {

@@ -293,3 +293,25 @@ TEST_F(Cli, ExportHonoursCriteriaLimits) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(Cli, GridAndCompareSampleTheCriteriaLimitedRegion) {
+  const std::string file = dataset("five_bar_dextar_pm_alpha40.json");
+  const auto g = run("grid " + file + " --cells 1000 --json");
+  ASSERT_EQ(g.status, 0) << g.err;
+  const double grid_area = nlohmann::json::parse(g.out)["area"];
+  const auto a = run("area " + file + " --json");
+  ASSERT_EQ(a.status, 0) << a.err;
+  const double certified = nlohmann::json::parse(a.out)["area"];
+  // α <= 40° keeps 0.18125 m² of the 0.41558 m² workspace; a 1000² grid is
+  // within 1e-3 of the certified area (the whole workspace would be 2.3x off).
+  EXPECT_NEAR(grid_area, certified, 1e-3 * certified);
+  const auto c = run("compare " + file + " --ladder 200 --depths 4 --budget 2 --json");
+  ASSERT_EQ(c.status, 0) << c.err;
+  const auto j = nlohmann::json::parse(c.out);
+  EXPECT_EQ(j["rows"][0]["method"], "certified");
+  EXPECT_NEAR(j["exact_area"].get<double>(), certified, 1e-6 * certified);
+}
+
+}  // namespace

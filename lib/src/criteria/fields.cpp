@@ -465,6 +465,52 @@ std::vector<Limit> file_limits(const io::MechanismFile& file) {
   return out;
 }
 
+namespace {
+
+class LimitedMechanism final : public mechanisms::Mechanism {
+ public:
+  LimitedMechanism(std::shared_ptr<const mechanisms::Mechanism> base, std::vector<std::pair<CriterionField, double>> f)
+      : base_(std::move(base)), fields_(std::move(f)) {}
+  std::string_view kind() const override { return base_->kind(); }
+  int dof() const override { return base_->dof(); }
+  std::vector<mechanisms::JointInfo> joints() const override { return base_->joints(); }
+  std::vector<mechanisms::JointSolution> inverse(const mechanisms::Pose& p) const override { return base_->inverse(p); }
+  std::vector<mechanisms::PoseSolution> direct(std::span<const double> q) const override { return base_->direct(q); }
+  std::vector<mechanisms::Evaluation> evaluate(const mechanisms::Pose& p, const mechanisms::Criteria& c) const override {
+    return base_->evaluate(p, c);
+  }
+  geometry::Region workspace() const override {
+    throw std::runtime_error("a criteria-limited workspace is certified, not exact (pkmws area gives its bounds)");
+  }
+  bool reachable(const mechanisms::Pose& pose) const override {
+    if (!base_->reachable(pose)) return false;
+    for (const auto& [field, level] : fields_) {
+      const double v = field.surrogate->value({pose.x, pose.y});
+      if (!(v <= level)) return false;  // NaN (undefined) counts as outside
+    }
+    return true;
+  }
+  mechanisms::Drawing draw(const mechanisms::Pose& p) const override { return base_->draw(p); }
+  geometry::Box bounds() const override { return base_->bounds(); }
+
+ private:
+  std::shared_ptr<const mechanisms::Mechanism> base_;
+  std::vector<std::pair<CriterionField, double>> fields_;
+};
+
+}  // namespace
+
+std::shared_ptr<const mechanisms::Mechanism> limited_mechanism(const io::MechanismFile& file) {
+  std::vector<std::pair<CriterionField, double>> fields;
+  for (const Limit& l : file_limits(file)) {
+    for (CriterionField& f : fields_for(file, l.name)) {
+      const double level = f.level(l.threshold);
+      fields.emplace_back(std::move(f), level);
+    }
+  }
+  return std::make_shared<LimitedMechanism>(file.model, std::move(fields));
+}
+
 geometry::Region criteria_domain(const io::MechanismFile& file) { return file.model->workspace(); }
 
 LimitedWorkspace limited_workspace(const io::MechanismFile& file, const std::vector<Limit>& limits,

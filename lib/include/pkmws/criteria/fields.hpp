@@ -90,6 +90,12 @@ struct LimitedWorkspace {
 LimitedWorkspace limited_workspace(const io::MechanismFile& file, const std::vector<Limit>& limits,
                                    const certified::LevelSetOptions& options);
 
+/// The grid samplers' view of a criteria-limited workspace: the file's
+/// mechanism whose reachable() also asks every criterion surrogate to be within
+/// its level (the same fields and levels as limited_workspace). Everything else
+/// is delegated; workspace() throws (that region is certified, not exact).
+std::shared_ptr<const mechanisms::Mechanism> limited_mechanism(const io::MechanismFile& file);
+
 /// The exact workspace the criteria are restricted to (Mechanism::workspace()).
 geometry::Region criteria_domain(const io::MechanismFile& file);
 

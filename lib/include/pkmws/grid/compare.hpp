@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,6 +35,15 @@ struct CompareOptions {
   /// Also run the certified bounds pass on the uniform grid (its own time column).
   bool certified_bounds = true;
   Execution execution;
+  /// The reference computation, when it is not Mechanism::workspace() (e.g. a
+  /// criteria-limited region: certified level sets). Returns the area and its
+  /// guaranteed relative half-width; timed like the exact one.
+  struct Reference {
+    double area = 0.0;
+    double relative_half_width = 0.0;
+    std::string method = "certified";
+  };
+  std::function<Reference()> reference;
 };
 
 struct CompareRow {
