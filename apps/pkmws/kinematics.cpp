@@ -1,7 +1,9 @@
 // pkmws ik / dk / eval: every working and assembly mode as JSON (SPEC §4).
 #include <cmath>
 #include <complex>
+#include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 #include "bodies_cli.hpp"
@@ -241,6 +243,25 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands) {
     const auto pose = read_pose(mech, ev->values);
     Json out = header(mech);
     out["pose"] = pose_json(mech.model->dof(), pose);
+    // Distance in task space from the pose to the traced type-2 singularity
+    // curves at this orientation (polylines whose vertices lie on the curve),
+    // null when the mechanism has none drawn.
+    Json distance_type2 = nullptr;
+    if (mech.model->dof() >= 2) {
+      double best = std::numeric_limits<double>::infinity();
+      const geometry::Point p{pose.x, pose.y};
+      for (const auto& curve : mech.model->draw(pose).singular_curves) {
+        for (std::size_t k = 0; k + 1 < curve.size(); ++k) {
+          const geometry::Point d = curve[k + 1] - curve[k];
+          const double len2 = geometry::dot(d, d);
+          const double t = len2 > 0.0 ? std::clamp(geometry::dot(p - curve[k], d) / len2, 0.0, 1.0) : 0.0;
+          best = std::min(best, geometry::norm(p - (curve[k] + t * d)));
+        }
+        if (curve.size() == 1) best = std::min(best, geometry::norm(p - curve[0]));
+      }
+      if (std::isfinite(best)) distance_type2 = best;
+    }
+    out["distance_to_type2_singularity"] = distance_type2;
     Json modes = Json::array();
     for (const auto& e : mech.model->evaluate(pose, mech.criteria)) {
       Json j{{"mode", e.mode},

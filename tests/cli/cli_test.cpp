@@ -315,3 +315,17 @@ TEST_F(Cli, GridAndCompareSampleTheCriteriaLimitedRegion) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(Cli, EvalGivesTheDistanceToTheTypeTwoSingularity) {
+  // PAMINSA at phi = 0: the singular circle has radius
+  // sqrt(R_b² + R_p² - 2 R_b R_p) = 0.25 m (seed 004), so from (0.1, 0.05) the
+  // distance is 0.25 - |P| (to the polyline's chord sag).
+  const auto r = run("eval " + dataset("three_rpr_paminsa.json") + " 0.1 0.05 0");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["distance_to_type2_singularity"].get<double>(), 0.25 - std::hypot(0.1, 0.05), 2e-4);
+}
+
+}  // namespace
