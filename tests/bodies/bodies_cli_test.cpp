@@ -23,6 +23,7 @@
 
 #include "pkmws/bodies/bodies.hpp"
 #include "pkmws/io/mechanism_file.hpp"
+#include "../support/cli_runner.hpp"
 #include "classify.hpp"
 
 namespace fs = std::filesystem;
@@ -33,24 +34,12 @@ namespace {
 
 std::string dataset(const std::string& stem) { return std::string(PKMWS_SOURCE_DIR) + "/datasets/" + stem + ".json"; }
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using Result = pkmws::test::CliResult;
+using pkmws::test::slurp;
 
 Result run(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path() / ("pkmws-bodies-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path out = dir / "out.txt", err = dir / "err.txt";
-  const int raw = std::system((std::string(PKMWS_CLI) + " " + args + " >" + out.string() + " 2>" + err.string()).c_str());
-  Result r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+  const fs::path dir = pkmws::test::scratch_dir("bodies");
+  Result r = pkmws::test::run_cli(args, dir);
   fs::remove_all(dir);
   return r;
 }

@@ -14,21 +14,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../support/cli_runner.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using Result = pkmws::test::CliResult;
+using pkmws::test::slurp;
 
 class Cli : public ::testing::Test {
  protected:
@@ -40,18 +33,7 @@ class Cli : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  Result run(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd = std::string(PKMWS_CLI) + " " + args + " >" + out.string() + " 2>" + err.string();
-    const int raw = std::system(cmd.c_str());
-    Result r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
+  Result run(const std::string& args) { return pkmws::test::run_cli(args, dir_); }
 
   fs::path write(const std::string& name, const std::string& content) {
     const fs::path p = dir_ / name;

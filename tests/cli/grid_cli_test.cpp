@@ -14,39 +14,22 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../support/cli_runner.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using CliRun = pkmws::test::CliResult;
+using pkmws::test::slurp;
 
 fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / ("pkmws-grid-cli-" + std::to_string(::getpid()));
+  const fs::path dir = pkmws::test::scratch_dir("grid-cli");
   fs::create_directories(dir);
   return dir;
 }
 
-CliRun run(const std::string& args) {
-  const fs::path dir = scratch();
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string(PKMWS_CLI) + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int raw = std::system(cmd.c_str());
-  CliRun r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
+CliRun run(const std::string& args) { return pkmws::test::run_cli(args, scratch()); }
 
 std::string dataset(const std::string& stem) {
   return std::string(PKMWS_SOURCE_DIR) + "/datasets/" + stem + ".json";

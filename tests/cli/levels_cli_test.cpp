@@ -12,32 +12,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../support/cli_runner.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
+using Result = pkmws::test::CliResult;
+using pkmws::test::slurp;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Result run(const std::string& args, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string(PKMWS_CLI) + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int raw = std::system(cmd.c_str());
-  Result r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
+Result run(const std::string& args, const fs::path& dir) { return pkmws::test::run_cli(args, dir); }
 
 std::string dataset(const std::string& name) { return std::string(PKMWS_SOURCE_DIR) + "/datasets/" + name; }
 
