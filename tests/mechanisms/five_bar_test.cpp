@@ -507,3 +507,50 @@ TEST(FiveBarFile, ErrorsNameTheField) {
     EXPECT_EQ(load_error(d), "elbows: unknown field");
   }
 }
+
+namespace {
+
+TEST(FiveBarStatics, ActuatorTorqueIsTheWorstMomentOfTheLoad) {
+  // seed 004 Table 2 (chain R̲RR): the worst actuator torque over force
+  // directions of norm f at C is f |∂C/∂q_i| (virtual work), with ∂C/∂q_i
+  // taken here by finite differences of the direct kinematics.
+  const double f = 100.0;
+  pkmws::mechanisms::Criteria criteria;
+  criteria.load = pkmws::mechanisms::Load{f, 0.0};
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> ux(-0.25, 0.25), uy(0.05, 0.4);
+  int checked = 0;
+  for (int s1 : {1, -1})
+    for (int s2 : {1, -1}) {
+      const FiveBar m = dextar(s1, s2);
+      for (int n = 0; n < 40; ++n) {
+        const pkmws::mechanisms::Pose pose{ux(rng), uy(rng), 0.0};
+        for (const auto& e : m.evaluate(pose, criteria)) {
+          if (!e.reachable || e.singular || e.reactions_N.size() != 2) continue;
+          for (int i = 0; i < 2; ++i) {
+            const double h = 1e-7;
+            std::vector<double> qp = e.joints, qm = e.joints;
+            qp[static_cast<std::size_t>(i)] += h;
+            qm[static_cast<std::size_t>(i)] -= h;
+            auto nearest = [&](const std::vector<double>& q) {
+              Point best{1e300, 1e300};
+              for (const auto& s : m.direct(q))
+                if (std::hypot(s.pose.x - pose.x, s.pose.y - pose.y) < std::hypot(best.x - pose.x, best.y - pose.y))
+                  best = {s.pose.x, s.pose.y};
+              return best;
+            };
+            const Point cp = nearest(qp), cm = nearest(qm);
+            const double expected = f * std::hypot(cp.x - cm.x, cp.y - cm.y) / (2 * h);
+            double torque = -1.0;
+            for (const auto& [k, v] : e.extra)
+              if (k == "actuator_torque" + std::to_string(i + 1)) torque = v;
+            EXPECT_NEAR(torque, expected, 1e-5 * expected + 1e-9);
+            ++checked;
+          }
+        }
+      }
+    }
+  EXPECT_GT(checked, 100);
+}
+
+}  // namespace

@@ -570,3 +570,52 @@ TEST(ThreeRpr, TracedSingularityOfPaminsaIsTheSeedsCircle) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ThreeRpr, ActuatorEffortIsTheWorstVirtualWorkOfTheLoad) {
+  // seed 004 Table 2 (chain RPR): the actuator's worst effort over loads of
+  // force norm f (any direction) and moment ±m at P is
+  // f |∂P/∂q_i| + |m| |∂φ/∂q_i|, here by finite differences of the DK.
+  const double f = 100.0, mom = 5.0;
+  Criteria criteria;
+  criteria.load = Load{f, mom};
+  for (auto act : {ThreeRprActuation::revolute, ThreeRprActuation::prismatic}) {
+    const ThreeRpr m = ThreeRpr::symmetric(0.35, 0.1, act);
+    std::mt19937_64 rng(41);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int checked = 0;
+    for (int n = 0; n < 60; ++n) {
+      const Pose pose{0.12 * u(rng), 0.12 * u(rng), 0.4 * u(rng)};
+      const auto ev = m.evaluate(pose, criteria).front();
+      // Away from the type-2 singularity (finite differences lose accuracy there).
+      if (ev.singular || ev.reactions_N.size() != 3 || !(ev.condition_number < 50.0)) continue;
+      const auto q = act == ThreeRprActuation::revolute ? m.leg_angles(pose) : m.leg_lengths(pose);
+      for (std::size_t i = 0; i < 3; ++i) {
+        const double h = 1e-7;
+        auto solve = [&](double dq) {
+          auto qq = q;
+          qq[i] += dq;
+          const auto d = act == ThreeRprActuation::revolute ? m.direct_from_angles(qq) : m.direct_from_lengths(qq);
+          Pose best{1e300, 1e300, 0};
+          for (const Pose& p : d.poses)
+            if (std::hypot(p.x - pose.x, p.y - pose.y) + std::abs(angle_diff(p.phi, pose.phi)) <
+                std::hypot(best.x - pose.x, best.y - pose.y) + std::abs(angle_diff(best.phi, pose.phi)))
+              best = p;
+          return best;
+        };
+        const Pose pp = solve(h), pm = solve(-h);
+        const double expected = f * std::hypot(pp.x - pm.x, pp.y - pm.y) / (2 * h) +
+                                mom * std::abs(angle_diff(pp.phi, pm.phi)) / (2 * h);
+        double effort = -1.0;
+        for (const auto& [k, v] : ev.extra)
+          if (k == "actuator_effort" + std::to_string(i + 1)) effort = v;
+        EXPECT_NEAR(effort, expected, 1e-4 * expected);
+        ++checked;
+      }
+    }
+    EXPECT_GT(checked, 100);
+  }
+}
+
+}  // namespace

@@ -332,6 +332,15 @@ std::vector<Evaluation> FiveBar::evaluate(const Pose& pose, const Criteria& crit
     // seed 004: cos α_i = |sin ε| for both legs (the force of leg i is along its
     // distal link; with actuator j locked C moves perpendicular to distal link j).
     detail::set_point_platform_transmission(e, std::abs(det_a) / (l12 * l22), criteria);
+    // seed 004 Table 2, chain R̲RR: the elbow and base joints carry the distal
+    // force R_i; the actuator torque is its moment about A_i,
+    // |τ_i| = l_i1 R_i |sin(angle between proximal and distal link)| = R_i |B_ii| / l_i2
+    // (N times the file's length unit; the Π-joint's own force is not included).
+    for (int i = 0; i < 2 && static_cast<std::size_t>(i) < e.reactions_N.size(); ++i) {
+      const double distal = legs_[i].distal;
+      e.extra.push_back({"actuator_torque" + std::to_string(i + 1),
+                         e.reactions_N[static_cast<std::size_t>(i)] * std::abs(j.B(i, i)) / distal});
+    }
     e.extra.push_back({"transmission_angle_deg", transmission_angle(c, q1, q2) * rad2deg});
     out.push_back(e);
   }

@@ -490,6 +490,14 @@ std::vector<Evaluation> ThreeRpr::evaluate(const Pose& pose, const Criteria& cri
   for (double a : t.pressure_angle) e.pressure_angle_deg.push_back(a * rad2deg);
   if (criteria.load) {
     for (double r : mechanisms::reaction_max(t, *criteria.load)) e.reactions_N.push_back(r);
+    // seed 004 Table 2, chain RPR: the base and slider joints carry the same
+    // force |f_A| = |f_C| = R_i; the actuator's effort is the torque
+    // |τ| = ρ_i R_i (R̲PR: the force acts at B_i perpendicular to the leg) or
+    // the force |τ| = R_i (RP̲R). Torques in N times the file's length unit.
+    for (std::size_t i = 0; i < 3 && i < e.reactions_N.size(); ++i) {
+      const double tau = actuation_ == ThreeRprActuation::revolute ? rho[i] * e.reactions_N[i] : e.reactions_N[i];
+      e.extra.push_back({"actuator_effort" + std::to_string(i + 1), tau});
+    }
   }
   e.extra.push_back({"transmission_det", t.determinant});
   for (std::size_t i = 0; i < 3; ++i) e.extra.push_back({"leg_length" + std::to_string(i + 1), rho[i]});
