@@ -36,6 +36,10 @@ void add_levels(CLI::App& app, std::vector<Command>& commands);   // criterion b
 /// `pkmws area` for a file with `criteria` limits: certified area bounds of the
 /// limited workspace (levels.cpp); `tolerance` relative to the area.
 Json criteria_area_report(const io::MechanismFile& mech, double tolerance);
+/// What `pkmws levels` writes for a criterion at increasing levels "a,b,c":
+/// the band figure (svg) or the traced level curves (csv: level, piece, x, y).
+std::string bands_export(const io::MechanismFile& mech, const std::string& criterion, const std::string& levels,
+                         bool svg, double tolerance);
 /// Writes the curve charts of a 1-DOF file into `dir`; returns the file names.
 std::vector<std::string> write_curve_figures(const io::MechanismFile& mech, const std::string& dir);
 

@@ -16,6 +16,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     bool bare = false;
     bool real = false;
     std::string bound = "outer";
+    std::string criterion, levels;
   };
   auto a = std::make_shared<Args>();
   sub->add_option("FILE", a->file, "Mechanism file (JSON)")->required();
@@ -33,8 +34,21 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
                   "biglide, or files with criteria limits): export the outer enclosure (every point of "
                   "the region, default) or the inner one (only points of the region)")
       ->check(CLI::IsMember({"inner", "outer"}));
+  sub->add_option("--criterion", a->criterion,
+                  "With --levels: export the bands of a criterion (pressure_angle, reaction, velocity_ratio) "
+                  "instead of the workspace: svg = band figure, csv = traced level curves");
+  sub->add_option("--levels", a->levels, "Increasing thresholds of --criterion, e.g. 20,40,60,80");
   commands.push_back({sub, [a] {
     const io::ExportFormat format = io::parse_export_format(a->format);
+    if (a->criterion.empty() != a->levels.empty()) throw io::InputError("--criterion and --levels go together");
+    if (!a->criterion.empty()) {
+      if (format != io::ExportFormat::svg && format != io::ExportFormat::csv) {
+        throw io::InputError("--criterion: the bands export as svg (figure) or csv (traced level curves)");
+      }
+      const io::MechanismFile mech = io::load_mechanism(a->file);
+      io::write_file_atomic(a->out, bands_export(mech, a->criterion, a->levels, format == io::ExportFormat::svg, 1e-4));
+      return 0;
+    }
     if (a->tolerance < 0.0 || !std::isfinite(a->tolerance)) {
       throw io::InputError("--tolerance: must be a positive length");
     }

@@ -183,7 +183,28 @@ std::string svg_figure(const io::MechanismFile& mech, const BandRun& run) {
   return s.str();
 }
 
+std::string curves_csv(const BandRun& run, const std::vector<double>& levels) {
+  std::ostringstream c;
+  c.precision(17);
+  c << "level,piece,x,y\n";
+  for (std::size_t k = 0; k < run.sub.size(); ++k) {
+    int piece = 0;
+    for (const auto& p : run.sub[k].curves) {
+      for (const auto& q : p) c << levels[k] << "," << piece << "," << q.x << "," << q.y << "\n";
+      ++piece;
+    }
+  }
+  return c.str();
+}
+
 }  // namespace
+
+std::string bands_export(const io::MechanismFile& mech, const std::string& criterion, const std::string& levels_text,
+                         bool svg, double tolerance) {
+  const std::vector<double> levels = parse_levels(levels_text);
+  const BandRun run = run_bands(mech, criterion, levels, tolerance);
+  return svg ? svg_figure(mech, run) : curves_csv(run, levels);
+}
 
 Json criteria_area_report(const io::MechanismFile& mech, double tolerance) {
   const auto limits = criteria::file_limits(mech);
@@ -248,19 +269,7 @@ void add_levels(CLI::App& app, std::vector<Command>& commands) {
     j["method"] = "certified";
     j["time_ms"] = run.time_ms;
     if (!a->svg.empty()) io::write_file_atomic(a->svg, svg_figure(mech, run));
-    if (!a->csv.empty()) {
-      std::ostringstream c;
-      c.precision(17);
-      c << "level,piece,x,y\n";
-      for (std::size_t k = 0; k < run.sub.size(); ++k) {
-        int piece = 0;
-        for (const auto& p : run.sub[k].curves) {
-          for (const auto& q : p) c << levels[k] << "," << piece << "," << q.x << "," << q.y << "\n";
-          ++piece;
-        }
-      }
-      io::write_file_atomic(a->csv, c.str());
-    }
+    if (!a->csv.empty()) io::write_file_atomic(a->csv, curves_csv(run, levels));
     if (a->json) {
       print_json(j);
       return 0;

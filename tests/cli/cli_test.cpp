@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -309,6 +310,37 @@ TEST_F(Cli, EvalGivesTheDistanceToTheTypeTwoSingularity) {
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(j["distance_to_type2_singularity"].get<double>(), 0.25 - std::hypot(0.1, 0.05), 2e-4);
+}
+
+}  // namespace
+
+namespace {
+
+TEST_F(Cli, ExportWritesTheBandsOfACriterion) {
+  const std::string file = dataset("five_bar_dextar_pp.json");
+  const auto csv = dir_ / "bands.csv";
+  auto r = run("export " + file + " -f csv --criterion pressure_angle --levels 30,60 -o " + csv.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream in(slurp(csv));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "level,piece,x,y");
+  std::set<std::string> levels;
+  std::size_t rows = 0;
+  while (std::getline(in, line)) {
+    levels.insert(line.substr(0, line.find(',')));
+    ++rows;
+  }
+  EXPECT_EQ(levels, (std::set<std::string>{"30", "60"}));
+  EXPECT_GT(rows, 1000u);
+  r = run("export " + file + " -f svg --criterion pressure_angle --levels 30,60 -o " + (dir_ / "b.svg").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(slurp(dir_ / "b.svg").find("<svg"), std::string::npos);
+  expect_bad_input(run("export " + file + " -f dxf --criterion pressure_angle --levels 30 -o " +
+                       (dir_ / "c.dxf").string()),
+                   "svg");
+  expect_bad_input(run("export " + file + " -f svg --criterion pressure_angle -o " + (dir_ / "d.svg").string()),
+                   "--levels");
 }
 
 }  // namespace
