@@ -6,45 +6,50 @@ import json
 import os
 
 here = os.path.dirname(os.path.abspath(__file__))
+
+
+def derived(base, name, criteria, figure):
+    """A copy of a base dataset with a name, criteria limits and the figure it reproduces."""
+    d = dict(base)
+    d["name"] = name
+    d["criteria"] = criteria
+    d["source"] = dict(base.get("source", {}))
+    d["source"]["figure"] = figure
+    return d
+
+
+def write(stem, d):
+    with open(os.path.join(here, stem + ".json"), "w") as f:
+        json.dump(d, f, indent=2)
+        f.write("\n")
+
 modes = {"pp": "(+1, +1)", "pm": "(+1, -1)", "mp": "(-1, +1)", "mm": "(-1, -1)"}
 for mode in modes:
     base = json.load(open(os.path.join(here, f"five_bar_dextar_{mode}.json")))
     for alpha in (20, 40, 60, 80):
-        d = dict(base)
-        d["name"] = f"DexTAR five-bar, working mode {modes[mode]}, pressure angle <= {alpha} deg"
-        d["criteria"] = {"max_pressure_angle_deg": float(alpha)}
-        d["source"] = dict(base.get("source", {}))
-        d["source"]["figure"] = f"Fig. 10 (workspace limited by alpha_max = {alpha} deg), working mode {modes[mode]}"
-        with open(os.path.join(here, f"five_bar_dextar_{mode}_alpha{alpha}.json"), "w") as f:
-            json.dump(d, f, indent=2)
-            f.write("\n")
+        write(f"five_bar_dextar_{mode}_alpha{alpha}",
+              derived(base, f"DexTAR five-bar, working mode {modes[mode]}, pressure angle <= {alpha} deg",
+                      {"max_pressure_angle_deg": float(alpha)},
+                      f"Fig. 10 (workspace limited by alpha_max = {alpha} deg), working mode {modes[mode]}"))
 
 base = json.load(open(os.path.join(here, "three_rpr_paminsa.json")))
 for phi in (0, 25, 50):
     for rmax in (200, 110):
-        d = dict(base)
-        d["name"] = f"Planar PAMINSA, phi = {phi} deg, R_max = {rmax} N at joint B1"
+        d = derived(base, f"Planar PAMINSA, phi = {phi} deg, R_max = {rmax} N at joint B1",
+                    {"load": {"force_N": 100.0, "moment_Nm": 5.0}, "max_reaction_N": float(rmax),
+                     "reaction_legs": [1]},
+                    f"Fig. 13 (constant-orientation workspace, phi = {phi} deg, R_max = {rmax} N)")
         d["orientation_deg"] = float(phi)
         # The type-2 singular circle (radius <= 0.296 m for these phi) lies inside the window,
         # and the region is taken in the assembly mode of the centre, so the window never binds.
         d["analysis_window"] = [[-0.32, -0.32], [0.32, 0.32]]
-        d["criteria"] = {"load": {"force_N": 100.0, "moment_Nm": 5.0}, "max_reaction_N": float(rmax),
-                         "reaction_legs": [1]}
-        d["source"] = dict(base.get("source", {}))
-        d["source"]["figure"] = f"Fig. 13 (constant-orientation workspace, phi = {phi} deg, R_max = {rmax} N)"
-        with open(os.path.join(here, f"three_rpr_paminsa_phi{phi}_r{rmax}.json"), "w") as f:
-            json.dump(d, f, indent=2)
-            f.write("\n")
+        write(f"three_rpr_paminsa_phi{phi}_r{rmax}", d)
 
 # Biglide, simplified scheme (seed 003 fig. 8): the workspace where both
 # actuators move at most t times faster than the tool along y, V_i / V_y <= t.
 base = json.load(open(os.path.join(here, "biglide_simplified.json")))
 for ratio in (2,):
-    d = dict(base)
-    d["name"] = f"Biglide, simplified scheme, velocity ratio V_i/V_y <= {ratio}"
-    d["criteria"] = {"max_velocity_ratio": float(ratio)}
-    d["source"] = dict(base.get("source", {}))
-    d["source"]["figure"] = f"Fig. 8 (velocity ratio V/V_y), sub-level set V_i/V_y <= {ratio} for both sliders"
-    with open(os.path.join(here, f"biglide_simplified_vratio{ratio}.json"), "w") as f:
-        json.dump(d, f, indent=2)
-        f.write("\n")
+    write(f"biglide_simplified_vratio{ratio}",
+          derived(base, f"Biglide, simplified scheme, velocity ratio V_i/V_y <= {ratio}",
+                  {"max_velocity_ratio": float(ratio)},
+                  f"Fig. 8 (velocity ratio V/V_y), sub-level set V_i/V_y <= {ratio} for both sliders"))
