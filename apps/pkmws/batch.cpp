@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "bodies_cli.hpp"
 #include "cli.hpp"
 #include "pkmws/io/export.hpp"
 
@@ -40,8 +41,8 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
     for (const auto& f : a->files) mechs.push_back(io::load_mechanism(f));
     Json rows = Json::array();
     std::string md =
-        "| file | name | mechanism | area | unit | components | time (ms) | figure |\n"
-        "|---|---|---|---:|---|---:|---:|---|\n";
+        "| file | name | mechanism | area | unit | components | time (ms) | figure | limited / real area |\n"
+        "|---|---|---|---:|---|---:|---:|---|---|\n";
     for (const auto& mech : mechs) {
       const std::string stem = fs::path(mech.path).stem().string();
       Json row{{"file", mech.path}, {"name", mech.name}, {"mechanism", mech.mechanism}};
@@ -61,7 +62,7 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
         }
         rows.push_back(row);
         md += "| " + stem + " | " + mech.name + " | " + mech.mechanism + " | – | | | | " +
-              std::string(e.what()) + links + " |\n";
+              std::string(e.what()) + links + " | |\n";
         continue;
       }
       const double area = enclosure.exact ? region.area() : enclosure.area_estimate();
@@ -77,9 +78,32 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
         row["area_upper"] = enclosure.area_upper;
       }
       row["method"] = enclosure.method();
+      // What the file limits the workspace to: criteria (certified level sets,
+      // 1e-5 here to keep the batch quick; `pkmws area` aims at 1e-6) or bodies
+      // (the real workspace, certified). The area column stays the reachable one.
+      std::string limited;
+      mechanisms::Pose pose = sample_pose(mech, region);
+      if (mech.criteria.any()) {
+        const Json c = criteria_area_report(mech, 1e-5);
+        row["limited_area_lower"] = c["area_lower"];
+        row["limited_area_upper"] = c["area_upper"];
+        row["limited_method"] = "certified";
+        limited = "criteria: [" + fmt("%.10g", c["area_lower"].get<double>()) + ", " +
+                  fmt("%.10g", c["area_upper"].get<double>()) + "] (certified)";
+        figure.caption += "; " + limited + " (pkmws export draws that region)";
+      } else if (mech.bodies) {
+        const auto real = real_workspace_of(mech, region, 7);
+        row["real_area_lower"] = real.real.area_lower;
+        row["real_area_upper"] = real.real.area_upper;
+        row["real_method"] = real.real.method();
+        limited = "real: [" + fmt("%.10g", real.real.area_lower) + ", " + fmt("%.10g", real.real.area_upper) + "] (" +
+                  real.real.method() + ")";
+        figure.overlays = real_workspace_overlays(real);
+        figure.caption += "; " + limited + ", black outline";
+        if (!real.real.inner.empty()) pose = sample_pose(mech, real.real.inner);
+      }
       const std::string svg = stem + ".svg";
-      io::write_file_atomic(fs::path(a->out) / svg,
-                            io::workspace_figure(mech, region, sample_pose(mech, region), figure));
+      io::write_file_atomic(fs::path(a->out) / svg, io::workspace_figure(mech, region, pose, figure));
       row["area"] = area;
       row["units"] = mech.units;
       row["components"] = comps.size();
@@ -88,7 +112,7 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
       rows.push_back(row);
       md += "| " + stem + " | " + mech.name + " | " + mech.mechanism + " | " + fmt("%.10g", area) +
             " | " + area_unit(mech) + " | " + std::to_string(comps.size()) + " | " +
-            fmt("%.2f", time_ms) + " | [" + svg + "](" + svg + ") |\n";
+            fmt("%.2f", time_ms) + " | [" + svg + "](" + svg + ") | " + limited + " |\n";
       std::printf("%-34s %18.10g %s\n", stem.c_str(), area, area_unit(mech).c_str());
     }
     io::write_file_atomic(fs::path(a->out) / "summary.md", md);
