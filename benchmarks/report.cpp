@@ -93,19 +93,6 @@ struct Panel {
   std::vector<Series> series;
 };
 
-std::string svg_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 std::string superscript(int e) {
   static const char* digits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
   std::string s = e < 0 ? "⁻" : "";
@@ -164,7 +151,7 @@ std::string plot_svg(const std::vector<Panel>& panels, double floor_error) {
     auto X = [&](double t) { return x0 + (std::log10(t) - t0) / double(t1 - t0) * pw; };
     auto Y = [&](double e) { return y0 + (e1 - std::log10(std::max(e, floor_error))) / double(e1 - e0) * ph; };
     s << "<text x=\"" << x0 + pw / 2 << "\" y=\"" << y0 - 8 << "\" text-anchor=\"middle\" font-size=\"13\">"
-      << svg_escape(p.title) << "</text>\n";
+      << io::xml_escape(p.title) << "</text>\n";
     // Grid lines and ticks.
     for (int d = t0; d <= t1; ++d) {
       const double x = X(std::pow(10.0, d));
@@ -213,7 +200,7 @@ std::string plot_svg(const std::vector<Panel>& panels, double floor_error) {
         << ser.colour << "\" stroke-width=\"1.6\"" << (ser.dashed ? " stroke-dasharray=\"6,4\"" : "") << "/>\n";
     }
     s << marker(ser, lx + 14, ly);
-    s << "<text x=\"" << lx + 34 << "\" y=\"" << ly + 4 << "\">" << svg_escape(ser.name) << "</text>\n";
+    s << "<text x=\"" << lx + 34 << "\" y=\"" << ly + 4 << "\">" << io::xml_escape(ser.name) << "</text>\n";
     lx += 34 + 7.0 * double(ser.name.size()) + 28;
     if (lx > width - 260) {
       lx = ml;

@@ -55,17 +55,6 @@ BandRun run_bands(const io::MechanismFile& mech, const std::string& name, const 
   return run;
 }
 
-std::string escape(const std::string& t) {
-  std::string o;
-  for (char c : t) {
-    if (c == '<') o += "&lt;";
-    else if (c == '>') o += "&gt;";
-    else if (c == '&') o += "&amp;";
-    else o += c;
-  }
-  return o;
-}
-
 // Colours from good (green) to bad (red), one per band.
 std::string band_colour(std::size_t k, std::size_t n) {
   const double t = n <= 1 ? 0.0 : static_cast<double>(k) / static_cast<double>(n - 1);
@@ -90,7 +79,7 @@ std::string svg_figure(const io::MechanismFile& mech, const BandRun& run) {
   const double width = box.width() * scale, height = box.height() * scale;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width + 220 << "\" height=\"" << height + 40
     << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-   s << "<text x=\"8\" y=\"16\">" << escape(mech.name) << ": " << run.field.name << " (" << run.field.unit << ")</text>\n";
+   s << "<text x=\"8\" y=\"16\">" << io::xml_escape(mech.name) << ": " << run.field.name << " (" << run.field.unit << ")</text>\n";
   s << "<g transform=\"translate(0,24)\">\n";
   // Bands: the sub-level pieces of the largest level first, then smaller ones
   // on top, clipped to the workspace (cells across its boundary overhang it).

@@ -406,6 +406,20 @@ std::string to_csv(const Region& region, const ExportOptions& options) {
   return out;
 }
 
+std::string xml_escape(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
 void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
   // The temporary file lives in the target's directory so that rename(2) is
   // atomic; any failure removes it. Missing directories are not created.

@@ -22,17 +22,8 @@ namespace {
 using geometry::Box;
 using geometry::Point;
 
-// Pixel coordinates and sizes: two decimals are plenty.
-std::string px(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", v);
-  std::string s = buf;
-  // Trim trailing zeros ("12.50" -> "12.5", "3.00" -> "3").
-  while (!s.empty() && s.back() == '0') s.pop_back();
-  if (!s.empty() && s.back() == '.') s.pop_back();
-  if (s == "-0") s = "0";
-  return s;
-}
+using detail::nice_step;
+using detail::px;
 
 // Full precision for the geometry transform (the path itself is exact).
 std::string g17(double v) {
@@ -41,23 +32,8 @@ std::string g17(double v) {
   return buf;
 }
 
-// 1-2-5 step giving at most about `target` intervals over `range`.
-double nice_step(double range, int target) {
-  const double raw = range / target;
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0}) {
-    if (m * mag >= raw * (1.0 - 1e-12)) return m * mag;
-  }
-  return 10.0 * mag;
-}
-
-// Tick label k * step with the step's decimals and a typographic minus.
-std::string tick_label(long k, double step) {
-  const int decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)));
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, std::abs(static_cast<double>(k) * step));
-  return (k < 0 ? "\u2212" : "") + std::string(buf);
-}
+// Tick label k * step.
+std::string tick_label(long k, double step) { return detail::tick_label(static_cast<double>(k) * step, step); }
 
 // Greedy word wrap at `width` characters (UTF-8 multibyte counted per byte;
 // close enough for a caption).

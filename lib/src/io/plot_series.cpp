@@ -15,34 +15,9 @@ namespace pkmws::io {
 
 namespace {
 
-std::string px(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", v);
-  std::string s = buf;
-  while (!s.empty() && s.back() == '0') s.pop_back();
-  if (!s.empty() && s.back() == '.') s.pop_back();
-  if (s == "-0") s = "0";
-  return s;
-}
-
-double nice_step(double range, int target) {
-  const double raw = range / std::max(1, target);
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0}) {
-    if (m * mag >= raw * (1.0 - 1e-12)) return m * mag;
-  }
-  return 10.0 * mag;
-}
-
-// Tick label with the step's decimals and a typographic minus.
-std::string tick_label(double value, double step) {
-  const int decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)));
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, std::abs(value));
-  std::string s = buf;
-  const bool zero = s.find_first_not_of("0.") == std::string::npos;
-  return (value < 0 && !zero ? "\u2212" : "") + s;
-}
+using detail::nice_step;
+using detail::px;
+using detail::tick_label;
 
 // Widen [lo, hi] to whole ticks; a degenerate range gets a margin.
 std::array<double, 2> widen(double lo, double hi) {

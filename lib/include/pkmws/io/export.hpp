@@ -80,4 +80,7 @@ std::string workspace_figure(const MechanismFile& file, const geometry::Region& 
 /// never leaves a partial file behind. Throws InputError when it cannot.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
 
+/// Escapes &, <, > and " for XML (SVG) text and attribute values.
+std::string xml_escape(std::string_view text);
+
 }  // namespace pkmws::io
