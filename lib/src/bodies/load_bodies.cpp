@@ -166,7 +166,7 @@ std::shared_ptr<const bodies::BodyRig> load_bodies(JsonReader& document,
     const std::string f = r.field("allowed_contacts");
     if (!v.is_array()) throw InputError(f + ": expected an array of [part, part] name pairs");
     for (std::size_t i = 0; i < v.size(); ++i) {
-      const std::string where = f + "[" + std::to_string(i) + "]";
+      const std::string where = item(f, i);
       const auto& e = v[i];
       if (!e.is_array() || e.size() != 2 || !e[0].is_string() || !e[1].is_string()) {
         throw InputError(where + ": expected [part, part] (two part names)");

@@ -91,7 +91,7 @@ std::vector<double> JsonReader::numbers(const std::string& key, std::size_t coun
   }
   std::vector<double> out;
   for (std::size_t i = 0; i < count; ++i) {
-    out.push_back(as_number(v[i], field(key) + "[" + std::to_string(i) + "]"));
+    out.push_back(as_number(v[i], item(field(key), i)));
   }
   return out;
 }
@@ -108,7 +108,7 @@ std::vector<geometry::Point> JsonReader::points(const std::string& key, std::siz
   }
   std::vector<geometry::Point> out;
   for (std::size_t i = 0; i < count; ++i) {
-    const std::string where = field(key) + "[" + std::to_string(i) + "]";
+    const std::string where = item(field(key), i);
     if (!v[i].is_array() || v[i].size() != 2) throw InputError(where + ": expected [x, y]");
     out.push_back({as_number(v[i][0], where + "[0]"), as_number(v[i][1], where + "[1]")});
   }
@@ -134,7 +134,7 @@ std::vector<JsonReader> JsonReader::objects(const std::string& key, std::size_t 
   }
   std::vector<JsonReader> out;
   for (std::size_t i = 0; i < count; ++i) {
-    out.emplace_back(v[i], field(key) + "[" + std::to_string(i) + "]");
+    out.emplace_back(v[i], item(field(key), i));
   }
   return out;
 }

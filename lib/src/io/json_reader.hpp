@@ -16,8 +16,14 @@
 
 namespace pkmws::io::detail {
 
+/// "field[i]": the path of an array element in messages.
+inline std::string item(const std::string& field, std::size_t i) { return field + "[" + std::to_string(i) + "]"; }
+
 class JsonReader {
  public:
+  /// A finite number from a raw JSON value; errors name `where`.
+  static double as_number(const nlohmann::json& value, const std::string& where);
+
   /// `path` names this object in messages ("" for the document, "legs[0]", ...).
   JsonReader(const nlohmann::json& object, std::string path);
 
@@ -55,7 +61,6 @@ class JsonReader {
 
  private:
   const nlohmann::json& get(const std::string& key);
-  static double as_number(const nlohmann::json& value, const std::string& where);
 
   const nlohmann::json& object_;
   std::string path_;

@@ -16,7 +16,7 @@ MechanismPtr load_biglide(JsonReader& document) {
   const auto rods = document.numbers("rods", 2);
   for (std::size_t i = 0; i < 2; ++i) {
     if (!(rods[i] > 0.0)) {
-      throw InputError(document.field("rods") + "[" + std::to_string(i) + "]: must be positive");
+      throw InputError(item(document.field("rods"), i) + ": must be positive");
     }
     p.rods[i] = rods[i];
   }
@@ -24,7 +24,7 @@ MechanismPtr load_biglide(JsonReader& document) {
   const std::string f = document.field("stroke");
   if (!stroke.is_array() || stroke.size() != 2) throw InputError(f + ": expected [[min, max], [min, max]], one per slider");
   for (std::size_t i = 0; i < 2; ++i) {
-    const std::string where = f + "[" + std::to_string(i) + "]";
+    const std::string where = item(f, i);
     const auto& s = stroke[i];
     if (!s.is_array() || s.size() != 2 || !s[0].is_number() || !s[1].is_number()) {
       throw InputError(where + ": expected [min, max]");

@@ -16,15 +16,6 @@ namespace {
 
 constexpr double deg2rad = std::numbers::pi / 180.0;
 
-std::string item(const std::string& field, std::size_t i) { return field + "[" + std::to_string(i) + "]"; }
-
-double finite_number(const nlohmann::json& v, const std::string& where) {
-  if (!v.is_number()) throw InputError(where + ": expected a number");
-  const double x = v.get<double>();
-  if (!std::isfinite(x)) throw InputError(where + ": expected a finite number");
-  return x;
-}
-
 }  // namespace
 
 MechanismPtr load_five_bar(JsonReader& document) {
@@ -58,7 +49,7 @@ MechanismPtr load_five_bar(JsonReader& document) {
       const std::string where = item(f, i);
       if (lim[i].is_null()) continue;
       if (!lim[i].is_array() || lim[i].size() != 2) throw InputError(where + ": expected [min, max] in degrees, or null");
-      const double lo = finite_number(lim[i][0], where + "[0]"), hi = finite_number(lim[i][1], where + "[1]");
+      const double lo = JsonReader::as_number(lim[i][0], where + "[0]"), hi = JsonReader::as_number(lim[i][1], where + "[1]");
       if (!(lo < hi)) throw InputError(where + ": expected [min, max] with min < max");
       if (hi - lo > 360.0) throw InputError(where + ": the range must not exceed 360 degrees");
       legs[i].crank_limits = std::array<double, 2>{lo * deg2rad, hi * deg2rad};

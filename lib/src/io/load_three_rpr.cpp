@@ -15,7 +15,6 @@ namespace pkmws::io::detail {
 
 namespace {
 constexpr double max_length = 1e15;
-std::string item(const std::string& field, std::size_t i) { return field + "[" + std::to_string(i) + "]"; }
 }  // namespace
 
 MechanismPtr load_three_rpr(JsonReader& document) {

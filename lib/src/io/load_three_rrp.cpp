@@ -19,15 +19,6 @@ namespace {
 constexpr double deg2rad = std::numbers::pi / 180.0;
 constexpr double max_length = 1e15;
 
-std::string item(const std::string& field, std::size_t i) { return field + "[" + std::to_string(i) + "]"; }
-
-double finite_number(const nlohmann::json& v, const std::string& where) {
-  if (!v.is_number()) throw InputError(where + ": expected a number");
-  const double x = v.get<double>();
-  if (!std::isfinite(x)) throw InputError(where + ": expected a finite number");
-  return x;
-}
-
 void check_points(const JsonReader& r, const std::string& key, const std::vector<geometry::Point>& points) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!(std::abs(points[i].x) <= max_length && std::abs(points[i].y) <= max_length)) {
@@ -47,7 +38,7 @@ std::array<std::optional<std::array<double, 2>>, 3> read_ranges(JsonReader& r, c
     const std::string where = item(f, i);
     if (v[i].is_null()) continue;
     if (!v[i].is_array() || v[i].size() != 2) throw InputError(where + ": expected [min, max] or null");
-    const double lo = finite_number(v[i][0], where + "[0]"), hi = finite_number(v[i][1], where + "[1]");
+    const double lo = JsonReader::as_number(v[i][0], where + "[0]"), hi = JsonReader::as_number(v[i][1], where + "[1]");
     if (!(lo < hi)) throw InputError(where + ": expected [min, max] with min < max");
     if (angles && hi - lo > 360.0) throw InputError(where + ": the range must not exceed 360 degrees");
     if (!angles && !(std::abs(lo) <= max_length && std::abs(hi) <= max_length)) {
