@@ -269,14 +269,8 @@ std::vector<Evaluation> Biglide::evaluate(const Pose& pose, const Criteria& crit
   std::vector<Evaluation> out;
   for (std::size_t k = 0; k < solutions.size(); ++k) {
     const JointSolution& s = solutions[k];
-    Evaluation e;
-    e.mode = s.mode;
-    e.reachable = s.valid;
-    e.reason = s.reason;
-    e.joints = s.joints;
+    Evaluation e = detail::start_evaluation(s, 2);
     if (s.joints.size() != 2) {
-      e.jacobian_det = nan;
-      e.condition_number = nan;
       out.push_back(e);
       continue;
     }

@@ -51,6 +51,22 @@ inline std::string mode_label(int first, int second) {
   return "(" + std::to_string(first) + "," + std::to_string(second) + ")";
 }
 
+/// The evaluation of one working mode started from its IK solution (mode,
+/// reachability, reason, joint values). Without all `dof` joint values there
+/// is nothing more to evaluate: the Jacobian figures are NaN.
+inline Evaluation start_evaluation(const JointSolution& s, std::size_t dof) {
+  Evaluation e;
+  e.mode = s.mode;
+  e.reachable = s.valid;
+  e.reason = s.reason;
+  e.joints = s.joints;
+  if (s.joints.size() != dof) {
+    e.jacobian_det = std::numeric_limits<double>::quiet_NaN();
+    e.condition_number = std::numeric_limits<double>::quiet_NaN();
+  }
+  return e;
+}
+
 /// Fills jacobian_det, condition_number and velocity_ratio (largest singular
 /// value: worst-case |dq| / |dx|) from the inverse-kinematic Jacobian dq/dx;
 /// infinite at a type-1 singularity, infinite conditioning at a type-2 one.

@@ -297,14 +297,8 @@ std::vector<Evaluation> FiveBar::evaluate(const Pose& pose, const Criteria& crit
   const auto solutions = inverse(pose);
   for (std::size_t k = 0; k < solutions.size(); ++k) {
     const JointSolution& s = solutions[k];
-    Evaluation e;
-    e.mode = s.mode;
-    e.reachable = s.valid;
-    e.reason = s.reason;
-    e.joints = s.joints;
+    Evaluation e = detail::start_evaluation(s, 2);
     if (s.joints.size() != 2) {
-      e.jacobian_det = std::numeric_limits<double>::quiet_NaN();
-      e.condition_number = std::numeric_limits<double>::quiet_NaN();
       out.push_back(e);
       continue;
     }

@@ -223,14 +223,8 @@ std::vector<Evaluation> Moma::evaluate(const Pose& pose, const Criteria& criteri
   const Point p{pose.x, pose.y};
   std::vector<Evaluation> out;
   for (const JointSolution& s : inverse(pose)) {
-    Evaluation e;
-    e.mode = s.mode;
-    e.reachable = s.valid;
-    e.reason = s.reason;
-    e.joints = s.joints;
+    Evaluation e = detail::start_evaluation(s, 2);
     if (s.joints.size() != 2) {
-      e.jacobian_det = std::numeric_limits<double>::quiet_NaN();
-      e.condition_number = std::numeric_limits<double>::quiet_NaN();
       out.push_back(e);
       continue;
     }

@@ -206,14 +206,8 @@ std::vector<PoseSolution> PiJoint::direct(std::span<const double> q) const {
 std::vector<Evaluation> PiJoint::evaluate(const Pose& pose, const Criteria& criteria) const {
   const PiJointKinematics& kin = params_.kinematics;
   const JointSolution s = inverse(pose).front();
-  Evaluation e;
-  e.mode = s.mode;
-  e.reachable = s.valid;
-  e.reason = s.reason;
-  e.joints = s.joints;
+  Evaluation e = detail::start_evaluation(s, 1);
   if (s.joints.empty()) {
-    e.jacobian_det = std::numeric_limits<double>::quiet_NaN();
-    e.condition_number = std::numeric_limits<double>::quiet_NaN();
     return {e};
   }
   const double theta = pose.phi;

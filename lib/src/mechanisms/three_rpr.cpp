@@ -461,11 +461,7 @@ std::vector<PoseSolution> ThreeRpr::direct(std::span<const double> joints) const
 
 std::vector<Evaluation> ThreeRpr::evaluate(const Pose& pose, const Criteria& criteria) const {
   const JointSolution s = inverse(pose).front();
-  Evaluation e;
-  e.mode = s.mode;
-  e.reachable = s.valid;
-  e.reason = s.reason;
-  e.joints = s.joints;
+  Evaluation e = detail::start_evaluation(s, 3);  // the 3-RPR's IK always gives three values
   const auto rho = leg_lengths(pose);
   const double scale = std::max(characteristic_length_, 1e-300);
   bool type1 = false;

@@ -26,7 +26,6 @@ constexpr double pi = std::numbers::pi;
 constexpr double two_pi = 2.0 * pi;
 constexpr double rad2deg = 180.0 / pi;
 constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr double singular_tol = 1e-9;
 
 using detail::format_number;
@@ -246,14 +245,8 @@ std::vector<Evaluation> ThreeRrp::evaluate(const Pose& pose, const Criteria& cri
   std::vector<Evaluation> out;
   const double length = characteristic_length_;
   for (const JointSolution& s : inverse(pose)) {
-    Evaluation e;
-    e.mode = s.mode;
-    e.reachable = s.valid;
-    e.reason = s.reason;
-    e.joints = s.joints;
+    Evaluation e = detail::start_evaluation(s, 3);
     if (s.joints.size() != 3) {
-      e.jacobian_det = nan;
-      e.condition_number = nan;
       out.push_back(e);
       continue;
     }
