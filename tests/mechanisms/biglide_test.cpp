@@ -11,6 +11,7 @@
 #include <string>
 
 #include "pkmws/io/mechanism_file.hpp"
+#include "../support/load_error.hpp"
 #include "pkmws/mechanisms/biglide.hpp"
 
 using namespace pkmws;
@@ -44,14 +45,7 @@ double F(double t, double l) { return 0.5 * (t * std::sqrt(l * l - t * t) + l * 
 
 io::MechanismFile parse(const nlohmann::json& doc) { return io::parse_mechanism(doc, "test"); }
 
-std::string load_error(const nlohmann::json& doc) {
-  try {
-    parse(doc);
-  } catch (const io::InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using pkmws::test::load_error;
 
 // Random tool points where the paper's branches reach with margin.
 Point random_pose(const Biglide& m, std::mt19937& rng) {

@@ -14,6 +14,7 @@
 
 #include "pkmws/geometry/primitives.hpp"
 #include "pkmws/io/mechanism_file.hpp"
+#include "../support/load_error.hpp"
 #include "pkmws/mechanisms/five_bar.hpp"
 
 using namespace pkmws;
@@ -73,14 +74,7 @@ nlohmann::json dextar_doc() {
           {"working_mode", {1, -1}}};
 }
 
-std::string load_error(const nlohmann::json& doc) {
-  try {
-    parse(doc);
-  } catch (const io::InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using pkmws::test::load_error;
 
 }  // namespace
 

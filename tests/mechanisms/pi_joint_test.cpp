@@ -11,6 +11,7 @@
 
 #include "pkmws/io/mechanism_file.hpp"
 #include "pkmws/io/plot.hpp"
+#include "../support/load_error.hpp"
 #include "pkmws/mechanisms/pi_joint.hpp"
 
 using namespace pkmws;
@@ -29,14 +30,7 @@ const PiJoint& prototype() {
   return dynamic_cast<const PiJoint&>(*f.model);
 }
 
-std::string load_error(const nlohmann::json& doc) {
-  try {
-    io::parse_mechanism(doc, "test");
-  } catch (const io::InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using pkmws::test::load_error;
 
 std::size_t count(const std::string& text, const std::string& what) {
   std::size_t n = 0;
