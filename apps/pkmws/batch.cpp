@@ -82,7 +82,7 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
       // 1e-5 here to keep the batch quick; `pkmws area` aims at 1e-6) or bodies
       // (the real workspace, certified). The area column stays the reachable one.
       std::string limited;
-      mechanisms::Pose pose = sample_pose(mech, region);
+      geometry::Region pose_region = region;  // where the mechanism is drawn (a shared value, not a copy)
       if (mech.criteria.any()) {
         const Json c = criteria_area_report(mech, 1e-5);
         row["limited_area_lower"] = c["area_lower"];
@@ -100,10 +100,11 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
                   real.real.method() + ")";
         figure.overlays = real_workspace_overlays(real);
         figure.caption += "; " + limited + ", black outline";
-        if (!real.real.inner.empty()) pose = sample_pose(mech, real.real.inner);
+        if (!real.real.inner.empty()) pose_region = real.real.inner;  // a collision-free pose
       }
       const std::string svg = stem + ".svg";
-      io::write_file_atomic(fs::path(a->out) / svg, io::workspace_figure(mech, region, pose, figure));
+      io::write_file_atomic(fs::path(a->out) / svg,
+                            io::workspace_figure(mech, region, sample_pose(mech, pose_region), figure));
       row["area"] = area;
       row["units"] = mech.units;
       row["components"] = comps.size();
