@@ -22,7 +22,7 @@ inline std::vector<std::string> dataset_stems() {
   return out;
 }
 
-/// The three MOMA configurations of the report (seed 000 figs. 5, 10, 11).
+/// The three MOMA configurations of the report ([Vasilic] figs. 5, 10, 11).
 struct Case {
   const char* stem;
   const char* label;

@@ -1,4 +1,4 @@
-// 3-DOF direct kinematics (the seed 001 elimination against the closed form,
+// 3-DOF direct kinematics (the [Mitsi] elimination against the closed form,
 // the 3-RPR sextic) and the certified real-scheme biglide workspace per depth.
 #include <benchmark/benchmark.h>
 
@@ -16,30 +16,30 @@ namespace {
 
 using namespace pkmws;
 
-const mechanisms::ThreeRrp& seed001() {
-  static const io::MechanismFile f = io::load_mechanism(bench::dataset("three_rrp_seed001"));
+const mechanisms::ThreeRrp& mitsi() {
+  static const io::MechanismFile f = io::load_mechanism(bench::dataset("three_rrp_mitsi"));
   const auto* m = dynamic_cast<const mechanisms::ThreeRrp*>(f.model.get());
-  if (!m) throw std::runtime_error("three_rrp_seed001 is not a 3-RRP");
+  if (!m) throw std::runtime_error("three_rrp_mitsi is not a 3-RRP");
   return *m;
 }
 
-const std::vector<double>& seed001_joints() {
+const std::vector<double>& mitsi_joints() {
   constexpr double deg = std::numbers::pi / 180.0;
   static const std::vector<double> q{60 * deg, 10 * deg, 10 * deg};
   return q;
 }
 
 void assur_closed_form(benchmark::State& state) {
-  const auto& m = seed001();
-  for (auto _ : state) benchmark::DoNotOptimize(m.direct_closed_form(seed001_joints()));
+  const auto& m = mitsi();
+  for (auto _ : state) benchmark::DoNotOptimize(m.direct_closed_form(mitsi_joints()));
 }
-BENCHMARK(assur_closed_form)->Name("dk/three_rrp_seed001/closed_form")->Unit(benchmark::kMicrosecond);
+BENCHMARK(assur_closed_form)->Name("dk/three_rrp_mitsi/closed_form")->Unit(benchmark::kMicrosecond);
 
 void assur_elimination(benchmark::State& state) {
-  const auto& m = seed001();
-  for (auto _ : state) benchmark::DoNotOptimize(m.direct_elimination(seed001_joints()));
+  const auto& m = mitsi();
+  for (auto _ : state) benchmark::DoNotOptimize(m.direct_elimination(mitsi_joints()));
 }
-BENCHMARK(assur_elimination)->Name("dk/three_rrp_seed001/elimination")->Unit(benchmark::kMicrosecond);
+BENCHMARK(assur_elimination)->Name("dk/three_rrp_mitsi/elimination")->Unit(benchmark::kMicrosecond);
 
 void rpr_sextic(benchmark::State& state) {
   static const io::MechanismFile f = io::load_mechanism(bench::dataset("three_rpr_prismatic"));

@@ -535,7 +535,7 @@ int main(int argc, char** argv) {
   md << "\n";
 
   md << "## Method notes\n\n"
-        "* **Uniform grid**: N × N cells over `Mechanism::bounds()`, the IK test of seed 000 fig. 8 at every cell "
+        "* **Uniform grid**: N × N cells over `Mechanism::bounds()`, the IK test of [Vasilic] fig. 8 at every cell "
         "centre, area = inside count × cell area. Rows are split into fixed blocks of ~64k points; counts are "
         "integers summed in block order, so 1 and 2 threads give identical bits.\n"
         "* **Certified bounds** (MOMA): a cell is *inside* when F(centre) > half-diagonal, *outside* when "

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the five-bar (DexTAR), biglide and active Pi-joint datasets (issue 4):
-seed 004 (DexTAR five-bar), seed 003 (biglide), seed 002 (active Pi-joint).
+[Briot] (DexTAR five-bar), [Strutynskyi] (biglide), [Milutinovic] (active Pi-joint).
 Run from the repository root: python3 datasets/generate_five_bar_biglide_pi_joint.py"""
 import json
 import math
@@ -8,24 +8,24 @@ import os
 
 SEED_002 = ("Milutinović D., Kokotović B., Slavković N., Živanović S.: Mehanizam aktivnog "
             "P-zgloba kao ekvivalenta kombinacije obrtnog zgloba i segmenta konstantne dužine "
-            "(technical solution, Belgrade 2014), seed 002")
+            "(technical solution, Belgrade 2014), [Milutinovic]")
 SEED_003 = ("Strutynskyi V. B., Kyrychenko A. M.: Kinematic relations of a machine tool with the "
-            "'biglide' parallel mechanism, seed 003")
+            "'biglide' parallel mechanism, [Strutynskyi]")
 SEED_004 = ("Pressure angles and joint reactions in the workspace of planar parallel manipulators "
-            "(five-bar DexTAR and 3-RPR PAMINSA), seed 004")
+            "(five-bar DexTAR and 3-RPR PAMINSA), [Briot]")
 
-# DexTAR (seed 004): l_AB = l_DE = l_BC = l_CD = 0.23 m, a = 0.1375 m.
+# DexTAR ([Briot]): l_AB = l_DE = l_BC = l_CD = 0.23 m, a = 0.1375 m.
 DEXTAR_L = 0.23
 DEXTAR_A = 0.1375
 
-# Biglide (seed 003 gives no dimensions). Chosen: table half width B = 500 mm and
+# Biglide ([Strutynskyi] gives no dimensions). Chosen: table half width B = 500 mm and
 # rods l = 940 mm, so that V/V_y = 1.5 and 2 fall at 782 mm and 841 mm from the
 # guide of slider 1, where fig. 8a reads 780 mm and 850 mm; strokes 1600 mm.
 BIGLIDE_B = 500.0
 BIGLIDE_L = 940.0
 BIGLIDE_STROKE = [0.0, 1600.0]
 # Real scheme: the same l1 = |S1 J|, tool at l3 = 900 mm from S1 and l4 = 150 mm from J;
-# l2 from the zero-position rule (seed 003 eq. 9 in the form consistent with eq. 3-4).
+# l2 from the zero-position rule ([Strutynskyi] eq. 9 in the form consistent with eq. 3-4).
 BIGLIDE_L3 = 900.0
 BIGLIDE_L4 = 150.0
 
@@ -62,8 +62,8 @@ def files():
                                    "lens of two disks of radius 0.46 m); the working mode selects the "
                                    "branch of the inverse kinematics and the singular curves."},
             }
-    # Five-bar with Pi-joint drives (seed 002 fig. 5): the prototype joint
-    # (a = 170 mm, k = 0.4) drives each crank; d in [117, 232] mm (the seed's
+    # Five-bar with Pi-joint drives ([Milutinovic] fig. 5): the prototype joint
+    # (a = 170 mm, k = 0.4) drives each crank; d in [117, 232] mm (the paper's
     # rounded d_min, d_max) limits theta_Pi to [-59.08, 61.40] deg.
     yield "five_bar_pi_joint", {
         "name": "Five-bar driven by two active Pi-joints",
@@ -72,7 +72,7 @@ def files():
         "description": "Five-bar 5R whose actuated revolute joints and proximal links are replaced by the "
                        "active Pi-joint prototype (a = 170 mm, k = 0.4); base joints at (-100, 0) and "
                        "(100, 0) mm (DexTAR's a/l ratio), distal links 170 mm; each crank angle is "
-                       "base_angle + sense * theta_Pi, theta_Pi from d by seed 002 eq. 3-5",
+                       "base_angle + sense * theta_Pi, theta_Pi from d by [Milutinovic] eq. 3-5",
         "base": [[-100.0, 0.0], [100.0, 0.0]],
         "proximal": [170.0, 170.0],
         "distal": [170.0, 170.0],
@@ -95,7 +95,7 @@ def files():
         "name": "Biglide, simplified scheme",
         "mechanism": "biglide",
         "units": "mm",
-        "description": "Sliders at (q1, -B) and (q2, +B), rods l1, l2 meeting at the tool (seed 003 fig. 3)",
+        "description": "Sliders at (q1, -B) and (q2, +B), rods l1, l2 meeting at the tool ([Strutynskyi] fig. 3)",
         "half_width": BIGLIDE_B,
         "rods": [BIGLIDE_L, BIGLIDE_L],
         "stroke": [BIGLIDE_STROKE, BIGLIDE_STROKE],
@@ -131,7 +131,7 @@ def files():
         "actuator": {"lead": 2.54, "resolution_per_step": 0.0127, "max_speed": 50.0, "max_force_N": 130.0},
         "source": {"paper": SEED_002,
                    "figure": "§4.2, Table 1, Fig. 15-17 (resolution, angular velocity, torque)",
-                   "note": "d(+-60 deg) = 231.40 / 116.20 mm; the seed prints d_max = 232, d_min = 117 "
+                   "note": "d(+-60 deg) = 231.40 / 116.20 mm; the paper prints d_max = 232, d_min = 117 "
                            "(rounded up) and d_max - d_min = 115 mm."},
     }
 

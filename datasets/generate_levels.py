@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Criteria datasets of seed 004 (issue 5): DexTAR with alpha_max in {20, 40, 60, 80} deg
+"""Criteria datasets of [Briot] (issue 5): DexTAR with alpha_max in {20, 40, 60, 80} deg
 for each working mode (fig. 10, 16 files) and the planar PAMINSA with phi in {0, 25, 50} deg
 and R_max in {200, 110} N (fig. 13, 6 files). Derived from the base datasets."""
 import json
@@ -45,7 +45,7 @@ for phi in (0, 25, 50):
         d["analysis_window"] = [[-0.32, -0.32], [0.32, 0.32]]
         write(f"three_rpr_paminsa_phi{phi}_r{rmax}", d)
 
-# Biglide, simplified scheme (seed 003 fig. 8): the workspace where both
+# Biglide, simplified scheme ([Strutynskyi] fig. 8): the workspace where both
 # actuators move at most t times faster than the tool along y, V_i / V_y <= t.
 base = json.load(open(os.path.join(here, "biglide_simplified.json")))
 for ratio in (2,):

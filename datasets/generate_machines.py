@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""Writes the machine datasets with bodies (SPEC §3.2): the MOMA desktop machine
-(seed 000, CAD model of fig. 1) in configurations M1, M3 and M5 -- the three
+"""Writes the machine datasets with bodies (docs/format.md (bodies)): the MOMA desktop machine
+([Vasilic], CAD model of fig. 1) in configurations M1, M3 and M5 -- the three
 whose real workspace the paper shows smaller than the computed one (figs. 5, 7,
-11, black outline) -- and a DexTAR-like five-bar (seed 004) with link thickness.
+11, black outline) -- and a DexTAR-like five-bar ([Briot]) with link thickness.
 Python 3 standard library only. Run: python3 datasets/generate_machines.py
 
 The paper gives no part sizes. The sizes below are plausible for a desktop
@@ -14,11 +14,11 @@ import os
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 MOMA_PAPER = ("Vasilić, Živanović: Workspace analysis of reconfigurable 2-DOF parallel "
-              "mechanism MOMA (seed 000)")
-H_MAX = 200  # mm, seed 000 §4.1
+              "mechanism MOMA ([Vasilic])")
+H_MAX = 200  # mm, [Vasilic] §4.1
 
 # MOMA desktop machine parts (mm), the same in every configuration (the modules are
-# re-mounted, not rebuilt: seed 000 §2).
+# re-mounted, not rebuilt: [Vasilic] §2).
 MOMA_BODIES = {
     # Revolute joint of the two rods with the spindle clamp under it: 40 mm diameter.
     # The forks of the two rods touch each other below 15 degrees between the rods.
@@ -36,7 +36,7 @@ MOMA_BODIES = {
 }
 
 BODIES_NOTE = (
-    "Bodies (SPEC §3.2; the paper gives no sizes, these are plausible for the desktop machine of "
+    "Bodies (docs/format.md (bodies); the paper gives no sizes, these are plausible for the desktop machine of "
     "fig. 1): platform joint with spindle clamp, disk of radius 20 mm; rods 18 mm wide (capsules, "
     "radius 9 mm); the rods' forks at the platform joint keep at least 15 degrees between the rods; "
     "carriage plates 60 mm along the guide x 70 mm across; each linear axis body 50 mm wide from "
@@ -54,19 +54,19 @@ def leg(ref, angle_deg, l, branch=-1):
 def moma_files():
     yield ("machine_moma_m1",
            "MOMA desktop machine, M1 (gamma = 0°), l = 250 mm, with bodies",
-           "MOMA M1 with the part sizes of the desktop machine: computed and real workspace (seed 000 fig. 5)",
+           "MOMA M1 with the part sizes of the desktop machine: computed and real workspace ([Vasilic] fig. 5)",
            [leg([-100, 0], 270, 250), leg([100, 0], 270, 250)],
            "Fig. 5 (§4.1): M1, alpha = 270 deg, l1 = l2 = 250 mm, R = (-100, 0), (100, 0), h_max = 200 mm")
     yield ("machine_moma_m3",
            "MOMA desktop machine, M3 (quadrant III), l = 250 mm, with bodies",
-           "MOMA M3 with the part sizes of the desktop machine: computed and real workspace (seed 000 fig. 7)",
+           "MOMA M3 with the part sizes of the desktop machine: computed and real workspace ([Vasilic] fig. 7)",
            [leg([50, 0], 0, 250, 1), leg([0, 50], 90, 250, 1)],
            "Fig. 7 (§4.1): M3 as in moma_m3_l250.json (printed guides alpha1 = 0, alpha2 = 90 deg, "
            "R1 = (50, 0), R2 = (0, 50), other root of eq. 4 on both legs so that the platform lies in "
            "quadrant III; see that file and docs/theory/moma.md)")
     yield ("machine_moma_m5",
            "MOMA desktop machine, M5 (gamma = 5°/-5°), l = 195 mm, with bodies",
-           "MOMA M5 with the part sizes of the desktop machine: computed and real workspace (seed 000 fig. 11)",
+           "MOMA M5 with the part sizes of the desktop machine: computed and real workspace ([Vasilic] fig. 11)",
            [leg([-100, 0], 275, 195), leg([100, 0], 265, 195)],
            "Fig. 11 (§4.2): M5, alpha1 = 3pi/2 + 5 deg, alpha2 = 3pi/2 - 5 deg, l1 = l2 = 195 mm, "
            "R = (-100, 0), (100, 0) (h_max = 200 mm assumed)")
@@ -102,7 +102,7 @@ def five_bar_file():
         "working_mode": [1, -1],
         "bodies": bodies,
         "source": {
-            "paper": "seed 004 (DexTAR: l_AB = l_DE = l_BC = l_CD = 0.23 m, a = 0.1375 m; SPEC §1.4)",
+            "paper": "[Briot] (DexTAR: l_AB = l_DE = l_BC = l_CD = 0.23 m, a = 0.1375 m; docs/theory/five_bar.md)",
             "note": "Part sizes are not in the paper; chosen as plausible for a DexTAR-size robot: "
                     "tool joint radius 15 mm, distal links 16 mm and proximal links 24 mm thick, a "
                     "minimum of 20 degrees between the distal links at the tool joint, a motor block "

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the MOMA datasets: every configuration of the program of building
-(seed 000 §2, SPEC §1.1) for every rod length l in {180, 195, 250} mm, with
-stroke [0, h_max], h_max = 200 mm (seed 000 §4.1). 11 configurations x 3 rod
+([Vasilic] §2, docs/theory/moma.md) for every rod length l in {180, 195, 250} mm, with
+stroke [0, h_max], h_max = 200 mm ([Vasilic] §4.1). 11 configurations x 3 rod
 lengths = 33 files. Python 3 standard library only.
 
 Run from anywhere: python3 datasets/generate_moma.py (writes beside this file).
@@ -10,10 +10,10 @@ import json
 import os
 
 PAPER = ("Vasilić, Živanović: Workspace analysis of reconfigurable 2-DOF parallel "
-         "mechanism MOMA (seed 000)")
-H_MAX = 200  # mm, seed 000 §4.1
-ROD_LENGTHS = (180, 195, 250)  # mm, seed 000 §2
-# seed 000 §4.1/§4.2: R1 = (-100, 0), R2 = (100, 0) for M1, M4, M5.
+         "mechanism MOMA ([Vasilic])")
+H_MAX = 200  # mm, [Vasilic] §4.1
+ROD_LENGTHS = (180, 195, 250)  # mm, [Vasilic] §2
+# [Vasilic] §4.1/§4.2: R1 = (-100, 0), R2 = (100, 0) for M1, M4, M5.
 R_LEFT, R_RIGHT = [-100, 0], [100, 0]
 
 
@@ -27,7 +27,7 @@ def leg(ref, angle_deg, l, branch=-1):
 
 
 def m1(l):
-    # M1: parallel guides, alpha1 = alpha2 = 3pi/2 + gamma (seed 000 §2, Fig. 2a, 2b).
+    # M1: parallel guides, alpha1 = alpha2 = 3pi/2 + gamma ([Vasilic] §2, Fig. 2a, 2b).
     for g in (0, -5, 5):
         figure = {0: "Fig. 2a (program of building)",
                   -5: "Fig. 2b (program of building)",
@@ -46,7 +46,7 @@ def m1(l):
 
 
 def m2(l):
-    # M2: guides parallel to the axes, platform in quadrant I (seed 000 §4.1, Fig. 2c).
+    # M2: guides parallel to the axes, platform in quadrant I ([Vasilic] §4.1, Fig. 2c).
     figure = "Fig. 6 (§4.1, workspace from the direct kinematics)" if l == 250 else \
         "Fig. 2c (program of building)"
     yield ("moma_m2_l%d" % l, "MOMA M2 (quadrant I), l = %d mm" % l,
@@ -71,7 +71,7 @@ M3_SHARES = {
 
 
 def m3(l):
-    # M3: guides parallel to the axes, platform in quadrant III (seed 000 §4.1, Fig. 2d).
+    # M3: guides parallel to the axes, platform in quadrant III ([Vasilic] §4.1, Fig. 2d).
     # The printed alpha1 = 0, alpha2 = pi/2, R1 = (50, 0), R2 = (0, 50) with eq. 5 (minus
     # root: platform ahead of each slider) put the platform in quadrant I. We keep the
     # printed guides and take the other root of eq. 4 (branch +1: platform behind each
@@ -89,7 +89,7 @@ def m3(l):
 
 
 def m4_m5(l):
-    # M4 diverging, M5 converging guides (seed 000 §2, Fig. 2e, 2f; §4.2 Fig. 10, 11).
+    # M4 diverging, M5 converging guides ([Vasilic] §2, Fig. 2e, 2f; §4.2 Fig. 10, 11).
     for name, pairs, kind, fig2 in (("m4", ((-5, 5), (0, 5), (-5, 0)), "diverging", "Fig. 2e"),
                                     ("m5", ((5, -5), (0, -5), (5, 0)), "converging", "Fig. 2f")):
         for variant, (g1, g2) in zip(("i", "ii", "iii"), pairs):

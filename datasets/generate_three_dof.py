@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Writes the 3-DOF datasets (issue 7): the 3-RRP of seed 001 (Tables 1-2,
-reconstructed), a 3-PRP example, the planar PAMINSA 3-RPR of seed 004 and a
+"""Writes the 3-DOF datasets (issue 7): the 3-RRP of [Mitsi] (Tables 1-2,
+reconstructed), a 3-PRP example, the planar PAMINSA 3-RPR of [Briot] and a
 prismatic 3-RPR with six real assembly modes.
 Run from the repository root: python3 datasets/generate_three_dof.py"""
 import json
@@ -8,13 +8,13 @@ import math
 import os
 
 SEED_001 = ("Mitsi S., Bouzakis K.-D., Mansour G., Popescu I.: A method for solving the direct "
-            "kinematics of the planar parallel robots 3-RRP and 3-PRP (in Greek), seed 001")
+            "kinematics of the planar parallel robots 3-RRP and 3-PRP (in Greek), [Mitsi]")
 SEED_004 = ("Briot S., Arakelian V., Glazunov V. A.: Pressure angles and joint reactions in planar "
-            "parallel manipulators (in Russian), seed 004")
+            "parallel manipulators (in Russian), [Briot]")
 
 S3 = math.sqrt(3.0)
 
-# Seed 001 Table 1 lost every digit 0 and 2 in text extraction. What is legible:
+# [Mitsi] Table 1 lost every digit 0 and 2 in text extraction. What is legible:
 # "x_A2 = 14", "x_A3 = 7", "y_A3 = 11,44" (the fixed revolutes, i.e. O_i), equal
 # cranks "l_OA = 1", equal sides "l = 4", "alpha = 6" degrees, crank angles
 # "phi1 = 6", "phi2 = 1", "phi3 = 1".
@@ -35,15 +35,15 @@ def base_triangle(side):
     return [[0.0, 0.0], [side, 0.0], [side / 2.0, side * S3 / 2.0]]
 
 
-def three_rrp_seed001():
+def three_rrp_mitsi():
     return {
-        "name": "3-RRP of seed 001 (Tables 1-2), reconstructed",
+        "name": "3-RRP of [Mitsi] (Tables 1-2), reconstructed",
         "mechanism": "three_rrp",
         "units": "mm",
         "description": "Symmetric 3-RRP: equilateral base O1O2O3 (side 140 mm, O1 at the origin, O2 on the "
                        "x-axis), equal cranks O_iA_i = 10 mm, equilateral platform B1B2B3 (side 40 mm, "
                        "alpha_i = 60 deg); chain i's slider runs on side B_iB_{i+1}. Platform frame at the "
-                       "platform's centroid. The seed's joint values are phi = (60, 10, 10) deg.",
+                       "platform's centroid. The paper's joint values are phi = (60, 10, 10) deg.",
         "base": base_triangle(BASE_SIDE),
         "platform": equilateral_platform(PLATFORM_SIDE),
         "crank_lengths": [CRANK, CRANK, CRANK],
@@ -74,7 +74,7 @@ def three_prp_example():
         "name": "3-PRP example (equilateral base, radial guides)",
         "mechanism": "three_prp",
         "units": "mm",
-        "description": "3-PRP with the base and platform of the seed 001 3-RRP: actuated sliders at O_i "
+        "description": "3-PRP with the base and platform of the [Mitsi] 3-RRP: actuated sliders at O_i "
                        "moving towards the base centroid (directions 30, 150, 270 deg), strokes 0-80 mm; "
                        "equilateral platform of side 40 mm, frame at its centroid.",
         "base": base_triangle(BASE_SIDE),
@@ -84,8 +84,8 @@ def three_prp_example():
         "orientation_deg": 0.0,
         "source": {
             "paper": SEED_001,
-            "note": ("The seed gives no 3-PRP example; this one reuses its base and platform with guides along "
-                     "the base's medians (seed 001 eq. 2: A_i = O_i + s_i (cos delta_i, sin delta_i)). "
+            "note": ("The paper gives no 3-PRP example; this one reuses its base and platform with guides along "
+                     "the base's medians ([Mitsi] eq. 2: A_i = O_i + s_i (cos delta_i, sin delta_i)). "
                      "Joint values s = (40, 40, 40) mm put the platform centroid on the base centroid."),
             "joints": [40.0, 40.0, 40.0],
         },
@@ -102,7 +102,7 @@ def three_rpr_paminsa():
         "description": "Equilateral base and platform, circumradii R_b = 0.35 m and R_p = 0.1 m, "
                        "A_i = R_b u(theta_i), B_i = P + R_p u(theta_i + phi), theta_i = -90, 30, 150 deg. "
                        "The base revolutes are actuated: leg i pushes on the platform through B_i "
-                       "perpendicular to the leg. No leg limits are given by the seed.",
+                       "perpendicular to the leg. No leg limits are given by the paper.",
         "base": [[rb * math.cos(math.radians(t)), rb * math.sin(math.radians(t))] for t in theta],
         "platform": [[rp * math.cos(math.radians(t)), rp * math.sin(math.radians(t))] for t in theta],
         "actuation": "revolute",
@@ -131,7 +131,7 @@ def three_rpr_prismatic():
         "orientation_deg": 0.0,
         "leg_limits": [[0.3, 2.0], [0.3, 2.0], [0.3, 2.0]],
         "source": {
-            "note": ("Not from a seed: a design found by a random search for an example of the sextic "
+            "note": ("Not from a paper: a design found by a random search for an example of the sextic "
                      "(docs/theory/three_dof.md) with all six roots real. Leg lengths (1.809, 1.142, "
                      "0.694) m give six poses (phi about -162.2, -66.9, -51.4, 53.6, 93.6, 104.7 deg)."),
             "joints": [1.809, 1.142, 0.694],
@@ -141,7 +141,7 @@ def three_rpr_prismatic():
 
 def main():
     out = {
-        "three_rrp_seed001": three_rrp_seed001(),
+        "three_rrp_mitsi": three_rrp_mitsi(),
         "three_prp_example": three_prp_example(),
         "three_rpr_paminsa": three_rpr_paminsa(),
         "three_rpr_prismatic": three_rpr_prismatic(),

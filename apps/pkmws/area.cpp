@@ -1,4 +1,4 @@
-// pkmws area FILE [--json]: the exact workspace area (SPEC §4).
+// pkmws area FILE [--json]: the exact workspace area (docs/format.md (command line)).
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -67,7 +67,7 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
       report["area_upper"] = enclosure.area_upper;
       report["components_of"] = "outer enclosure";
     }
-    // SPEC §3.2: with bodies, the real workspace = reachable − ∪ interference.
+    // docs/format.md (bodies): with bodies, the real workspace = reachable − ∪ interference.
     std::optional<bodies::RealWorkspace> real;
     if (mech.bodies) {
       real = real_workspace_of(mech, region, *depth);

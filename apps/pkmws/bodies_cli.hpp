@@ -1,4 +1,4 @@
-// The real workspace on the command line (SPEC §3.2): `pkmws explain`, and the
+// The real workspace on the command line (docs/format.md (bodies)): `pkmws explain`, and the
 // pieces `area`, `export` and `eval` use when a file lists `bodies`.
 #pragma once
 

@@ -1,5 +1,5 @@
 // pkmws compare FILE [--json] [--csv OUT]: exact area against the grid
-// baseline along a ladder of resolutions (SPEC §4, docs/benchmarks.md).
+// baseline along a ladder of resolutions (docs/format.md (command line), docs/benchmarks.md).
 #include <cmath>
 #include <cstdio>
 #include <sstream>

@@ -1,5 +1,5 @@
 // pkmws explain FILE X Y [--json]: which parts collide at that platform
-// position (SPEC §3.2), and the real-workspace helpers of area / export / eval.
+// position (docs/format.md (bodies)), and the real-workspace helpers of area / export / eval.
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -148,7 +148,7 @@ void add_explain(CLI::App& app, std::vector<Command>& commands) {
   commands.push_back({sub, [a] {
     const double x = parse_number(a->x, "X"), y = parse_number(a->y, "Y");
     const io::MechanismFile mech = io::load_mechanism(a->file);
-    if (!mech.bodies) throw io::InputError(a->file + ": the file lists no `bodies` (SPEC §3.2): nothing can collide");
+    if (!mech.bodies) throw io::InputError(a->file + ": the file lists no `bodies` (docs/format.md (bodies)): nothing can collide");
     Json out = collisions_json(mech, {x, y});
     out["name"] = mech.name;
     out["point"] = {x, y};

@@ -1,4 +1,4 @@
-// pkmws export FILE --format svg|dxf|wkt|geojson|csv -o OUT (SPEC §4).
+// pkmws export FILE --format svg|dxf|wkt|geojson|csv -o OUT (docs/format.md (command line)).
 #include <cmath>
 #include <cstdio>
 
@@ -53,7 +53,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       throw io::InputError("--tolerance: must be a positive length");
     }
     const io::MechanismFile mech = io::load_mechanism(a->file);
-    // With criteria limits (seed 004 figs. 10, 13): the certified limited
+    // With criteria limits ([Briot] figs. 10, 13): the certified limited
     // region, its enclosures built at cell resolution.
     const bool limited = mech.criteria.any() && !a->real;
     std::string limited_caption;
@@ -77,7 +77,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       throw io::InputError(a->file + ": the workspace is empty (impossible geometry): nothing to export");
     }
     if (a->real) {
-      if (!mech.bodies) throw io::InputError(a->file + ": --real needs `bodies` in the file (SPEC §3.2)");
+      if (!mech.bodies) throw io::InputError(a->file + ": --real needs `bodies` in the file (docs/format.md (bodies))");
       region = real_workspace_of(mech, region, 7).real.inner;
       if (region.empty()) throw io::InputError(a->file + ": the real workspace is empty: nothing to export");
     }
@@ -114,8 +114,8 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
           figure.caption = caption;
           mechanisms::Pose pose = sample_pose(mech, region);
           if (mech.bodies && !a->real) {
-            // SPEC §3.2: computed workspace (filled), interference regions shaded and
-            // labelled by pair, the real workspace outlined in black (seed 000 figs. 5-11).
+            // docs/format.md (bodies): computed workspace (filled), interference regions shaded and
+            // labelled by pair, the real workspace outlined in black ([Vasilic] figs. 5-11).
             const auto real = real_workspace_of(mech, region, 7);
             figure.overlays = real_workspace_overlays(real);
             std::snprintf(caption, sizeof caption,

@@ -1,5 +1,5 @@
 // pkmws grid FILE --cells N [--polar] [--adaptive DEPTH] [--sweep] [--threads K] [--json]:
-// the grid baseline (SPEC §4; seed 000 §4.1-4.2, figs. 4 and 8).
+// the grid baseline (docs/format.md (command line); [Vasilic] §4.1-4.2, figs. 4 and 8).
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -51,10 +51,10 @@ void add_grid(CLI::App& app, std::vector<Command>& commands) {
                   "sectors; with --adaptive the root grid; with --sweep the raster")
       ->required()
       ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));
-  sub->add_flag("--polar", o->polar, "Polar grid about the centre of the bounding box (seed 000 figs. 9-11a)");
+  sub->add_flag("--polar", o->polar, "Polar grid about the centre of the bounding box ([Vasilic] figs. 9-11a)");
   sub->add_option("--adaptive", o->adaptive, "Quadtree refined DEPTH levels below the root grid")
       ->check(CLI::Range(0, 30));
-  sub->add_flag("--sweep", o->sweep, "Joint-space sweep through the direct kinematics (seed 000 fig. 4)");
+  sub->add_flag("--sweep", o->sweep, "Joint-space sweep through the direct kinematics ([Vasilic] fig. 4)");
   sub->add_option("--samples", o->samples, "Joint samples per joint for --sweep (default 5 N)")
       ->check(CLI::Range(std::size_t{2}, std::size_t{1} << 16));
   sub->add_option("--threads", o->threads, "Threads (0 = all)")->check(CLI::Range(0, 1024));

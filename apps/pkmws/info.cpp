@@ -19,7 +19,7 @@ void add_info(CLI::App& app, std::vector<Command>& commands) {
                           {"joints", joints},
                           {"bounds", {{"min", {b.min.x, b.min.y}}, {"max", {b.max.x, b.max.y}}}}};
     if (mech.bodies) {
-      // SPEC §3.2: the pairs checked for collision (joined and allowed pairs excluded).
+      // docs/format.md (bodies): the pairs checked for collision (joined and allowed pairs excluded).
       const auto& m = mech.bodies->model();
       Json pairs = Json::array();
       for (const auto& p : m.pairs()) {

@@ -1,4 +1,4 @@
-// pkmws ik / dk / eval: every working and assembly mode as JSON (SPEC §4).
+// pkmws ik / dk / eval: every working and assembly mode as JSON (docs/format.md (command line)).
 #include <cmath>
 #include <complex>
 #include <algorithm>
@@ -35,8 +35,8 @@ Json complex_json(const std::vector<std::complex<double>>& roots) {
   return out;
 }
 
-// dk of the Assur-group mechanisms: the seed's elimination next to the closed
-// form (seed 001 eq. 9-18), so a user sees the eliminant, its true degree,
+// dk of the Assur-group mechanisms: the paper's elimination next to the closed
+// form ([Mitsi] eq. 9-18), so a user sees the eliminant, its true degree,
 // every root and how far the two methods are apart.
 Json assur_report(const mechanisms::ThreeRrp& m, const std::vector<double>& q) {
   const auto e = m.direct_elimination(q);
@@ -59,7 +59,7 @@ Json assur_report(const mechanisms::ThreeRrp& m, const std::vector<double>& q) {
       for (std::size_t i = 0; i < 3; ++i)
         difference = std::max(difference, geometry::norm(closed[k].vertices[i] - e.assemblies[k].vertices[i]));
   }
-  return Json{{"method", "Sylvester elimination of s2, s3 (seed 001 eq. 12-13)"},
+  return Json{{"method", "Sylvester elimination of s2, s3 ([Mitsi] eq. 12-13)"},
               {"variable", "sigma = s1 / L"},
               {"length_scale_L", e.length_scale},
               {"nominal_degree", 8},
@@ -209,7 +209,7 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands) {
       }
       if (!s.valid) j["reason"] = s.reason;
       if (!dk->svg.empty() && mech.model->dof() >= 2) {
-        // One figure per assembly mode (seed 001 figure 4): the mechanism at the
+        // One figure per assembly mode ([Mitsi] figure 4): the mechanism at the
         // pose over its constant-orientation workspace.
         const std::string path = dk->svg + "_" + std::to_string(k + 1) + ".svg";
         const geometry::Region ws = workspace_at(*mech.model, s.pose.phi);
@@ -279,7 +279,7 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands) {
       modes.push_back(j);
     }
     out["modes"] = modes;
-    // SPEC §3.2: with bodies, which parts collide at this platform position.
+    // docs/format.md (bodies): with bodies, which parts collide at this platform position.
     if (mech.bodies) out["bodies"] = collisions_json(mech, {pose.x, pose.y});
     print_json(out);
     return 0;

@@ -1,5 +1,5 @@
 // pkmws levels FILE --criterion NAME --levels a,b,c: the workspace cut into
-// bands of a criterion with certified area bounds per band (seed 004 figs. 9,
+// bands of a criterion with certified area bounds per band ([Briot] figs. 9,
 // 10, 12, 13), optional SVG figure and CSV of the traced level curves; and the
 // criteria-limited area used by `pkmws area` (method "certified").
 #include <algorithm>
@@ -220,7 +220,7 @@ Json criteria_area_report(const io::MechanismFile& mech, double tolerance) {
 }
 
 void add_levels(CLI::App& app, std::vector<Command>& commands) {
-  auto* sub = app.add_subcommand("levels", "Bands of a criterion with certified areas (seed 004 figs. 9-13)");
+  auto* sub = app.add_subcommand("levels", "Bands of a criterion with certified areas ([Briot] figs. 9-13)");
   struct Args {
     std::string file, criterion, levels, svg, csv;
     double tolerance = 1e-6;

@@ -1,4 +1,4 @@
-// pkmws: exact workspaces of planar parallel mechanisms (SPEC §4).
+// pkmws: exact workspaces of planar parallel mechanisms (docs/format.md (command line)).
 #include <cstdio>
 #include <exception>
 #include <iostream>

@@ -1,5 +1,5 @@
 // pkmws plot FILE --out DIR: the curves of a 1-DOF mechanism as SVG line
-// charts (the active Pi-joint: seed 002 figures 8-12 and 15-17).
+// charts (the active Pi-joint: [Milutinovic] figures 8-12 and 15-17).
 #include <cstdio>
 #include <filesystem>
 

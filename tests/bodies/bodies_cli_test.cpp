@@ -1,5 +1,5 @@
-// The real workspace on the command line and on the bundled machines (SPEC
-// §3.2): pkmws explain / area / export / eval, and every bundled machine's
+// The real workspace on the command line and on the bundled machines (docs/format.md,
+// bodies): pkmws explain / area / export / eval, and every bundled machine's
 // interference regions against the pose-by-pose test.
 #include <gtest/gtest.h>
 
@@ -155,7 +155,7 @@ TEST(BodiesMachines, EveryPairsBoundWidthShrinksWithDepth) {
 }
 
 // The DexTAR machine: where the distal links fold onto each other (near the
-// type-2 singularity ε = 0, SPEC §1.4) the link-angle pair collides, and such
+// type-2 singularity ε = 0, docs/theory/five_bar.md) the link-angle pair collides, and such
 // poses lie in that pair's certified region.
 TEST(BodiesMachines, DistalLinksCannotFoldOntoEachOther) {
   const auto mech = io::load_mechanism(dataset("machine_five_bar_dextar"));

@@ -1,4 +1,4 @@
-// Bodies and link interference (SPEC §3.2; seed 000 §4 end): distances against
+// Bodies and link interference (docs/format.md (bodies); [Vasilic] §4 end): distances against
 // closed forms, the exact platform-vs-rectangle Minkowski sum against
 // ab + 2r(a + b) + πr², every interference region against the brute-force
 // pose-by-pose collision test, real ⊆ reachable, zero-size bodies, bound width
@@ -32,7 +32,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-// MOMA M1 (seed 000 §4.1: R = (∓100, 0), alpha = 270°, l = 250, h_max = 200) with parts.
+// MOMA M1 ([Vasilic] §4.1: R = (∓100, 0), alpha = 270°, l = 250, h_max = 200) with parts.
 json moma_m1(json bodies_field) {
   json leg1 = {{"reference", {-100, 0}}, {"guide_angle_deg", 270}, {"stroke", {0, 200}}, {"rod_length", 250}, {"branch", -1}};
   json leg2 = leg1;
@@ -53,7 +53,7 @@ json m1_parts() {
   })");
 }
 
-// DexTAR (seed 004: l = 0.23 m, a = 0.1375 m) with link thickness.
+// DexTAR ([Briot]: l = 0.23 m, a = 0.1375 m) with link thickness.
 json dextar(json bodies_field) {
   json doc = {{"name", "dextar"}, {"mechanism", "five_bar"}, {"units", "m"},
               {"base", {{-0.1375, 0.0}, {0.1375, 0.0}}}, {"proximal", {0.23, 0.23}},

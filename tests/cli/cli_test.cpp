@@ -1,4 +1,4 @@
-// The command line as scripts use it (SPEC §4): JSON keys, exit codes, and
+// The command line as scripts use it (docs/format.md (command line)): JSON keys, exit codes, and
 // every kind of bad input giving one line on stderr, exit 2 and no output file.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -184,8 +184,8 @@ TEST_F(Cli, PlotWritesThePiJointCurvesAndRefusesOtherMechanisms) {
 namespace {
 
 TEST_F(Cli, ThreeDofDirectKinematicsGivesEveryAssemblyMode) {
-  // 3-RRP of seed 001 (reconstructed), joint values (60, 10, 10) deg.
-  auto r = run("dk " + dataset("three_rrp_seed001.json") + " 60 10 10 --svg " + (dir_ / "rrp").string());
+  // 3-RRP of [Mitsi] (reconstructed), joint values (60, 10, 10) deg.
+  auto r = run("dk " + dataset("three_rrp_mitsi.json") + " 60 10 10 --svg " + (dir_ / "rrp").string());
   ASSERT_EQ(r.status, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["solutions"].size(), 2u);
@@ -201,7 +201,7 @@ TEST_F(Cli, ThreeDofDirectKinematicsGivesEveryAssemblyMode) {
   // Each assembly goes back through `ik` to the same crank angles in one working mode.
   for (const auto& s : j["solutions"]) {
     const auto pose = s["pose"];
-    const auto ik = run("ik " + dataset("three_rrp_seed001.json") + " " + pose[0].dump() + " " + pose[1].dump() + " " +
+    const auto ik = run("ik " + dataset("three_rrp_mitsi.json") + " " + pose[0].dump() + " " + pose[1].dump() + " " +
                         pose[2].dump());
     ASSERT_EQ(ik.status, 0) << ik.err;
     const auto k = nlohmann::json::parse(ik.out);
@@ -304,7 +304,7 @@ namespace {
 
 TEST_F(Cli, EvalGivesTheDistanceToTheTypeTwoSingularity) {
   // PAMINSA at phi = 0: the singular circle has radius
-  // sqrt(R_b² + R_p² - 2 R_b R_p) = 0.25 m (seed 004), so from (0.1, 0.05) the
+  // sqrt(R_b² + R_p² - 2 R_b R_p) = 0.25 m ([Briot]), so from (0.1, 0.05) the
   // distance is 0.25 - |P| (to the polyline's chord sag).
   const auto r = run("eval " + dataset("three_rpr_paminsa.json") + " 0.1 0.05 0");
   ASSERT_EQ(r.status, 0) << r.err;

@@ -1,4 +1,4 @@
-// `pkmws grid` and `pkmws compare` as scripts use them (SPEC §4): JSON keys,
+// `pkmws grid` and `pkmws compare` as scripts use them (docs/format.md (command line)): JSON keys,
 // certified bounds around the exact area, CSV output, bad input -> exit 2.
 #include <gtest/gtest.h>
 #include <sys/wait.h>

@@ -1,5 +1,5 @@
 // Certified sub-level sets of the biglide velocity ratio V_i/V_y = |∂q_i/∂y|
-// (seed 003 fig. 8) over the exact simplified-scheme workspace.
+// ([Strutynskyi] fig. 8) over the exact simplified-scheme workspace.
 #include <gtest/gtest.h>
 
 #include <algorithm>

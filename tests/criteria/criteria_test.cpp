@@ -1,4 +1,4 @@
-// Criterion fields (seed 004): the worked reactions on real PAMINSA poses, the
+// Criterion fields ([Briot]): the worked reactions on real PAMINSA poses, the
 // type-2 singular circle, reactions against a direct linear solve of the
 // statics, jets against finite differences, interval enclosures against samples.
 #include <gtest/gtest.h>
@@ -27,7 +27,7 @@ constexpr double pi = std::numbers::pi;
 constexpr double deg = pi / 180.0;
 
 ThreeRpr paminsa(double phi, std::optional<Box> window = std::nullopt) {
-  // seed 004: R_b = 0.35 m, R_p = 0.1 m, actuated base revolutes.
+  // [Briot]: R_b = 0.35 m, R_p = 0.1 m, actuated base revolutes.
   const ThreeRpr s = ThreeRpr::symmetric(0.35, 0.1, ThreeRprActuation::revolute, phi);
   return ThreeRpr(s.base(), s.platform(), ThreeRprActuation::revolute, phi, std::nullopt, window);
 }
@@ -38,7 +38,7 @@ mechanisms::FiveBar dextar(int s1, int s2) {
   return mechanisms::FiveBar({a, e});
 }
 
-// seed 004, first example: P = (0, 0.2), φ = 0 puts the instantaneous centre
+// [Briot], first example: P = (0, 0.2), φ = 0 puts the instantaneous centre
 // I_1 of leg 1's twist (the meeting point of the force lines of legs 2 and 3)
 // at O: |B_1 I_1| = d_1 = b_1 = 0.1 m, |P I_1| = 2 b_1 (γ_1 = 2), leg 1 vertical
 // so r_1 ∥ v_1 (α_1 = 0): R_1 = 2 f + |m| / b_1 = 300 N for f = 100 N, m = 10 N·m.
@@ -70,7 +70,7 @@ TEST(CriteriaSeedReactions, HundredEightyNewtonsAtTheCentre) {
   EXPECT_NEAR(criteria::three_rpr_pressure_angle(m, 0).value({0.0, 0.0}), 0.0, 1e-6);
 }
 
-// seed 004 / SPEC §1.5: for fixed φ the type-2 singularity is the circle about
+// [Briot] / docs/theory/three_dof.md: for fixed φ the type-2 singularity is the circle about
 // O of radius sqrt(R_b² + R_p² - 2 R_b R_p cos φ); for cos φ = R_p / R_b every
 // position is singular. The field's determinant (through its reaction, which
 // blows up) and the mechanism's det A agree.
@@ -103,7 +103,7 @@ TEST(CriteriaPaminsa, TypeTwoSingularCircleAndTheAllSingularOrientation) {
 }
 
 // R_i,max = f |v_P,i| + |m| |ω_i| against the statics solved directly: for
-// random poses and load directions, A^T R = -w (seed 004: w = -A^T R) by LU,
+// random poses and load directions, A^T R = -w ([Briot]: w = -A^T R) by LU,
 // and the largest |R_i| over 720 force directions and both moment signs.
 TEST(CriteriaReactions, MaximumMatchesADirectLinearSolveOfTheStatics) {
   std::mt19937 rng(7);
@@ -138,7 +138,7 @@ TEST(CriteriaReactions, MaximumMatchesADirectLinearSolveOfTheStatics) {
   }
 }
 
-// The five-bar field reproduces FiveBar::evaluate's pressure angle (seed 004
+// The five-bar field reproduces FiveBar::evaluate's pressure angle ([Briot]
 // α = acos|sin ε|) in each working mode.
 TEST(CriteriaFiveBar, PressureAngleFieldMatchesTheMechanism) {
   std::mt19937 rng(3);

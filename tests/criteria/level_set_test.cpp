@@ -1,6 +1,6 @@
 // Certified sub-level sets: closed forms (disk, Cassini ovals with two
 // components, the lemniscate's saddle), dense sampling, point membership of
-// inner/outer, width against tolerance, DexTAR mirror symmetries, seed 004
+// inner/outer, width against tolerance, DexTAR mirror symmetries, [Briot]
 // figure 10's splitting, PAMINSA reaction-limited regions.
 #include <gtest/gtest.h>
 
@@ -252,7 +252,7 @@ TEST(LevelSets, FourWorkingModesObeyTheMirrorSymmetries) {
   }
 }
 
-// seed 004 fig. 10: at small α_max the usable workspace splits into several
+// [Briot] fig. 10: at small α_max the usable workspace splits into several
 // parts: the certified inner region has several components (they meet only at
 // the base joints A and E, where ε is undefined and every level curve ends).
 TEST(LevelSets, SmallPressureAngleSplitsTheDexTARWorkspace) {
@@ -292,7 +292,7 @@ TEST(LevelSets, PaminsaReactionLimitedRegionAgainstSampling) {
   // Undecided cells remain along an arc of the singular circle where R_1 stays
   // bounded (0/0): the width is limited by the depth there.
   EXPECT_LE(r.region.width(), 2e-3 * r.region.area_upper);
-  // R_max = 110 N gives a smaller region inside (seed 004 fig. 13).
+  // R_max = 110 N gives a smaller region inside ([Briot] fig. 13).
   const auto r110 = certified::sublevel_set(*c.surrogate, c.level(110.0), m.workspace(), c.within_test, o);
   EXPECT_LT(r110.region.area_upper, r.region.area_lower);
   EXPECT_GT(r110.region.area_lower, 0.0);

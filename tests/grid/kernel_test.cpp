@@ -1,4 +1,4 @@
-// Membership kernels: the MOMA fast path against Moma::reachable (seed 000
+// Membership kernels: the MOMA fast path against Moma::reachable ([Vasilic]
 // eq. 5-6) on every bundled MOMA file, bit-identical masks across instruction
 // sets and row splits, and the certified cell test against the exact Region.
 #include <gtest/gtest.h>

@@ -280,7 +280,7 @@ TEST(GridJointSweep, AgreesWithTheIkGrid) {
     jo.keep_points = true;
     const auto sweep = grid::joint_sweep(*m.model, jo);
     EXPECT_EQ(sweep.points_tested, 500u * 500u);
-    // Every valid DK pose passes the IK test (seed 000 fig. 4 vs fig. 8).
+    // Every valid DK pose passes the IK test ([Vasilic] fig. 4 vs fig. 8).
     const grid::MembershipKernel kernel(*m.model);
     std::size_t rejected = 0;
     for (const Point p : sweep.points) {

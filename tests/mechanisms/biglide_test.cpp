@@ -1,4 +1,4 @@
-// Biglide (seed 003): the paper's closed forms (eq. 1-8) against the robust
+// Biglide ([Strutynskyi]): the paper's closed forms (eq. 1-8) against the robust
 // geometric kinematics, IK/DK round trips, the zero-position rule (eq. 9),
 // simplified == real when the tool sits on the joint, velocity ratio V/V_y
 // against finite differences, statics, the simplified workspace against its
@@ -96,7 +96,7 @@ TEST(BiglideKinematics, PaperClosedFormsAgreeWithTheGeometry) {
 }
 
 TEST(BiglideKinematics, PrintedEquationEightDoesNotCloseTheLoop) {
-  // seed 003 eq. 8 is printed with acos(B+y / l3) - acos(...) in its last term;
+  // [Strutynskyi] eq. 8 is printed with acos(B+y / l3) - acos(...) in its last term;
   // with that sign the joint J computed from T is not at distance l1 from S1.
   const Biglide m(real());
   const Point t{900, 120};

@@ -1,4 +1,4 @@
-// Five-bar 5R (seed 004, DexTAR): IK/DK round trips in every working and
+// Five-bar 5R ([Briot], DexTAR): IK/DK round trips in every working and
 // assembly mode, Jacobians against finite differences, the mirror symmetries of
 // the four working modes, pressure angle and reactions against statics, the
 // type-2 curves, the exact workspace against closed forms (lens, annuli,
@@ -26,7 +26,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 constexpr double deg = pi / 180.0;
-constexpr double L = 0.23, A = 0.1375;  // DexTAR (seed 004)
+constexpr double L = 0.23, A = 0.1375;  // DexTAR ([Briot])
 
 std::string dataset(const std::string& stem) { return std::string(PKMWS_SOURCE_DIR) + "/datasets/" + stem + ".json"; }
 
@@ -86,7 +86,7 @@ TEST(FiveBarKinematics, DexTARDatasetsCarryTheirWorkingModes) {
     EXPECT_EQ(m.legs()[1].working_mode, s2);
     EXPECT_EQ(m.legs()[0].proximal, L);
     EXPECT_EQ(m.legs()[1].base.x, A);
-    EXPECT_NE(f.source.dump().find("seed 004"), std::string::npos);
+    EXPECT_NE(f.source.dump().find("[Briot]"), std::string::npos);
     // The file's working mode comes first and is the valid one.
     const auto sol = m.inverse({0.05, 0.2, 0.0});
     ASSERT_EQ(sol.size(), 4u);
@@ -213,8 +213,8 @@ TEST(FiveBarKinematics, WorkingModesObeyTheMirrorSymmetries) {
 }
 
 TEST(FiveBarKinematics, PressureAngleAndReactionsAgreeWithStatics) {
-  // seed 004: A^T = [R1 R2] (unit distal directions), cos α = |sin(ψ2 - ψ1)|;
-  // R = A^-T w for a load w at C; R_i,max = f / |sin ε| (SPEC §1.5).
+  // [Briot]: A^T = [R1 R2] (unit distal directions), cos α = |sin(ψ2 - ψ1)|;
+  // R = A^-T w for a load w at C; R_i,max = f / |sin ε| (docs/theory/three_dof.md).
   std::mt19937 rng(3);
   const FiveBar m = dextar(1, -1);
   mechanisms::Criteria crit;
@@ -367,7 +367,7 @@ TEST(FiveBarWorkspace, PiJointDrivesLimitTheCranksThroughTheirStroke) {
   const auto f = io::load_mechanism(dataset("five_bar_pi_joint"));
   const auto& m = dynamic_cast<const FiveBar&>(*f.model);
   ASSERT_TRUE(m.legs()[0].pi_joint && m.legs()[1].pi_joint);
-  // seed 002 eq. 3-5 at d = 117 and 232 mm with a = 170 mm, k = 0.4.
+  // [Milutinovic] eq. 3-5 at d = 117 and 232 mm with a = 170 mm, k = 0.4.
   const mechanisms::PiJointKinematics kin{170.0, 0.4};
   const double t_lo = *kin.angle(117.0), t_hi = *kin.angle(232.0);
   EXPECT_NEAR(t_lo / deg, -59.08, 0.01);
@@ -505,7 +505,7 @@ TEST(FiveBarFile, ErrorsNameTheField) {
 namespace {
 
 TEST(FiveBarStatics, ActuatorTorqueIsTheWorstMomentOfTheLoad) {
-  // seed 004 Table 2 (chain R̲RR): the worst actuator torque over force
+  // [Briot] Table 2 (chain R̲RR): the worst actuator torque over force
   // directions of norm f at C is f |∂C/∂q_i| (virtual work), with ∂C/∂q_i
   // taken here by finite differences of the direct kinematics.
   const double f = 100.0;

@@ -1,4 +1,4 @@
-// MOMA (seed 000, SPEC §1.1): the 33 bundled configurations, IK/DK round
+// MOMA ([Vasilic], docs/theory/moma.md): the 33 bundled configurations, IK/DK round
 // trips, the paper's closed form (eq. 9-12) against the robust DK, Jacobians
 // against finite differences, singularities at constructed poses, pressure
 // angle and reactions against their definitions, the exact workspace against an
@@ -50,7 +50,7 @@ std::vector<std::filesystem::path> moma_datasets() {
 
 const Moma& as_moma(const io::MechanismFile& f) { return dynamic_cast<const Moma&>(*f.model); }
 
-// M1 of seed 000 §4.1 built in code: guides at x = -+100 pointing down
+// M1 of [Vasilic] §4.1 built in code: guides at x = -+100 pointing down
 // (alpha = 3pi/2 + gamma), stroke [0, 200], rods l.
 Moma m1(double l = 250.0, double gamma_deg = 0.0, double stroke_max = 200.0) {
   const double a = 1.5 * pi + gamma_deg * deg;
@@ -89,7 +89,7 @@ TEST(MomaDatasets, ThirtyThreeConfigurationsOfTheProgramOfBuilding) {
     EXPECT_FALSE(mech.description.empty()) << stem;
     ASSERT_TRUE(mech.source.is_object()) << stem;
     for (const char* key : {"paper", "figure", "note"}) EXPECT_TRUE(mech.source.contains(key)) << stem << " " << key;
-    // Rod length from the name, stroke [0, 200] (seed 000 §4.1: h_max = 200).
+    // Rod length from the name, stroke [0, 200] ([Vasilic] §4.1: h_max = 200).
     const double l = std::stod(stem.substr(stem.rfind("_l") + 2));
     EXPECT_TRUE(l == 180 || l == 195 || l == 250) << stem;
     for (const MomaLeg& leg : m.legs()) {
@@ -113,7 +113,7 @@ TEST(MomaDatasets, ThirtyThreeConfigurationsOfTheProgramOfBuilding) {
       const double g2 = tag(stem.substr(second, stem.find('_', second) - second));
       EXPECT_NEAR(gamma(0), g1, 1e-12) << stem;
       EXPECT_NEAR(gamma(1), g2, 1e-12) << stem;
-      // M4 diverging: gamma1 <= gamma2; M5 converging: gamma1 >= gamma2 (seed 000 §2).
+      // M4 diverging: gamma1 <= gamma2; M5 converging: gamma1 >= gamma2 ([Vasilic] §2).
       if (stem[6] == '4') {
         EXPECT_LT(g1, g2) << stem;
       } else {
@@ -149,7 +149,7 @@ TEST(MomaDatasets, ThirtyThreeConfigurationsOfTheProgramOfBuilding) {
 }
 
 TEST(MomaDatasets, ThePapersReferenceConfigurationsNameTheirFigure) {
-  // seed 000 §4.1: Fig. 5-7 (l = 250); §4.2: Fig. 9-11 (l = 195).
+  // [Vasilic] §4.1: Fig. 5-7 (l = 250); §4.2: Fig. 9-11 (l = 195).
   const std::pair<const char*, const char*> cases[] = {
       {"moma_m1_g0_l250", "Fig. 5 "},      {"moma_m2_l250", "Fig. 6 "},
       {"moma_m3_l250", "Fig. 7 "},         {"moma_m1_gm5_l195", "Fig. 9 "},
@@ -235,7 +235,7 @@ TEST(MomaKinematics, InverseLegSolvesEq3OnTheBranchSide) {
             EXPECT_GT(std::abs(cross(a, w)), l * (1 - 1e-12));  // out of the rod's reach
             continue;
           }
-          // seed 000 eq. 3: p^2 - 2 p a.w + |w|^2 - l^2 = 0, i.e. |P - S| = l.
+          // [Vasilic] eq. 3: p^2 - 2 p a.w + |w|^2 - l^2 = 0, i.e. |P - S| = l.
           const Point s = m.slider(i, *q);
           EXPECT_NEAR(distance(p, s), l, 1e-12 * (l + norm(w)));
           // Branch -1 (eq. 5): P ahead of the slider, a.(P - S) >= 0; +1 behind.
@@ -438,7 +438,7 @@ TEST(MomaKinematics, M2AtP2Equal50DefeatsTheClosedFormButNotTheRobustDk) {
   const auto mech = io::load_mechanism(dataset("moma_m2_l250"));
   const Moma& m = as_moma(mech);
   // Slider 1 at (50, p1), slider 2 at (p2, 50): at p2 = 50 both have x = 50 and
-  // v4 = v1 in seed 000 eq. 12. The rods' circles meet at y = (p1 + 50) / 2,
+  // v4 = v1 in [Vasilic] eq. 12. The rods' circles meet at y = (p1 + 50) / 2,
   // x = 50 +- sqrt(250^2 - ((p1 - 50) / 2)^2); branch -1 needs P above slider 1
   // (p1 <= 50) and right of slider 2 (the + root): one valid mode for p1 < 50,
   // none for p1 > 50 (coincident sliders at p1 = 50: no isolated solution).
@@ -476,7 +476,7 @@ TEST(MomaKinematics, M2AtP2Equal50DefeatsTheClosedFormButNotTheRobustDk) {
 }
 
 TEST(MomaKinematics, ThePapersFixedSignOfEq10PicksTheWrongModeInM2AboveP2Equal50) {
-  // seed 000 eq. 10 uses "+" for M2. Just above p2 = 50 the line S1S2 tilts the
+  // [Vasilic] eq. 10 uses "+" for M2. Just above p2 = 50 the line S1S2 tilts the
   // other way and the valid platform (right of slider 2, above slider 1) is the
   // intersection with the smaller y: p1 = 10, p2 = 52 gives P ~ (299.9, 17.6).
   const auto mech = io::load_mechanism(dataset("moma_m2_l250"));

@@ -1,4 +1,4 @@
-// Active Π-joint (seed 002): the prototype's d range as the seed rounds it,
+// Active Π-joint ([Milutinovic]): the prototype's d range as the paper rounds it,
 // eq. 2-5 round trips, eq. 7 against the derivative of eq. 2 and against
 // eq. 9-11, statics eq. 12-15 by virtual work, accelerations eq. 17-20 against
 // finite differences, singularities, the figure data, the SVG line chart, and
@@ -49,7 +49,7 @@ TEST(PiJointKinematics, PrototypeReproducesTheSeedsDRange) {
   const double d_max = k.length(60 * deg), d_min = k.length(-60 * deg);
   EXPECT_NEAR(d_max, 231.4012, 1e-4);
   EXPECT_NEAR(d_min, 116.1959, 1e-4);
-  // The seed prints d_max = 232, d_min = 117 (rounded up) and d_max - d_min = 115.
+  // The paper prints d_max = 232, d_min = 117 (rounded up) and d_max - d_min = 115.
   EXPECT_EQ(std::ceil(d_max), 232.0);
   EXPECT_EQ(std::ceil(d_min), 117.0);
   EXPECT_EQ(std::round(d_max - d_min), 115.0);

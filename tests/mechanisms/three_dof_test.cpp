@@ -41,7 +41,7 @@ std::array<Point, 3> random_triangle(std::mt19937_64& rng, double scale) {
 }
 
 // External joints on the side lines of the triangle placed at (origin, phi):
-// A_i = B_i - s_i u_i (seed 001 eq. 14 read backwards).
+// A_i = B_i - s_i u_i ([Mitsi] eq. 14 read backwards).
 std::array<Point, 3> joints_on_sides(const AssurTriangle& tri, Point origin, double phi, const std::array<double, 3>& s) {
   std::array<Point, 3> a;
   for (std::size_t i = 0; i < 3; ++i) {
@@ -207,7 +207,7 @@ TEST(AssurGroup, EliminantRootsAreTheTrianglesAndTheirMirrorImages) {
 // ---------------------------------------------------------------------------
 // 3-RRP / 3-PRP
 
-ThreeRrp seed001_rrp() {
+ThreeRrp mitsi_rrp() {
   const double side = 140.0, h = side * std::sqrt(3.0) / 2.0;
   std::array<ThreeRrpChain, 3> c;
   c[0].base = {0, 0};
@@ -237,7 +237,7 @@ ThreeRrp example_prp() {
 TEST(ThreeRrp, InverseThenDirectRoundTripsInEveryWorkingMode) {
   // Poses come from the DK of random crank angles (so they are reachable);
   // each of the 8 working modes' IK joints goes back through the DK.
-  const ThreeRrp m = seed001_rrp();
+  const ThreeRrp m = mitsi_rrp();
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> uq(-pi, pi);
   int round_trips = 0;
@@ -291,7 +291,7 @@ TEST(ThreeRrp, SlidersRoundTripAndStayOnTheirSideLines) {
 
 TEST(ThreeRrp, VelocityRelationMatchesFiniteDifferences) {
   // A [v_P; ω] = B q̇ for the IK joint rates along a random direction.
-  for (const ThreeRrp& m : {seed001_rrp(), example_prp()}) {
+  for (const ThreeRrp& m : {mitsi_rrp(), example_prp()}) {
     std::mt19937_64 rng(13);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     int checked = 0;
@@ -545,7 +545,7 @@ TEST(ThreeRpr, AnnulusWorkspaceMatchesAGridCount) {
 namespace {
 
 TEST(ThreeRpr, TracedSingularityOfPaminsaIsTheSeedsCircle) {
-  // Seed 004: for fixed phi the type-2 singularity of the planar PAMINSA
+  // [Briot]: for fixed phi the type-2 singularity of the planar PAMINSA
   // (actuated base revolutes) is the circle about O of radius
   // sqrt(R_b^2 + R_p^2 - 2 R_b R_p cos phi). The drawing traces det A = 0.
   const double rb = 0.35, rp = 0.1;
@@ -574,7 +574,7 @@ TEST(ThreeRpr, TracedSingularityOfPaminsaIsTheSeedsCircle) {
 namespace {
 
 TEST(ThreeRpr, ActuatorEffortIsTheWorstVirtualWorkOfTheLoad) {
-  // seed 004 Table 2 (chain RPR): the actuator's worst effort over loads of
+  // [Briot] Table 2 (chain RPR): the actuator's worst effort over loads of
   // force norm f (any direction) and moment ±m at P is
   // f |∂P/∂q_i| + |m| |∂φ/∂q_i|, here by finite differences of the DK.
   const double f = 100.0, mom = 5.0;

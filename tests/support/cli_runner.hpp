@@ -1,4 +1,4 @@
-// Runs the pkmws program as scripts do (SPEC §4) and captures its exit status,
+// Runs the pkmws program as scripts do (docs/format.md (command line)) and captures its exit status,
 // standard output and standard error. Shared by the command-line tests.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Interference regions and the real workspace (SPEC §3.2; seed 000 §4 end):
+// Interference regions and the real workspace (docs/format.md (bodies); [Vasilic] §4 end):
 // exact Minkowski sums for the platform joint against fixed parts, certified
 // quadtree enclosures (pkmws::certified) for every other pair and for the
 // minimum angle between the links meeting at the platform joint.

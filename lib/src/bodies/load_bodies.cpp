@@ -1,4 +1,4 @@
-// `bodies` (SPEC §3.2), strict: every field validated, unknown fields are errors.
+// `bodies` (docs/format.md (bodies)), strict: every field validated, unknown fields are errors.
 //
 // moma:     platform_joint {radius, min_link_angle_deg?}, rods [{radius} × 2],
 //           slider_blocks [{length, width} × 2], housings [{extent [from, to], width} × 2],

@@ -1,4 +1,4 @@
-// The optional `bodies` field of MOMA and five-bar files (SPEC §3.2). Private.
+// The optional `bodies` field of MOMA and five-bar files (docs/format.md (bodies)). Private.
 #pragma once
 
 #include <memory>

@@ -1,4 +1,4 @@
-// Which pairs of parts may collide (SPEC §3.2): every pair with at least one
+// Which pairs of parts may collide (docs/format.md (bodies)): every pair with at least one
 // moving part, both solid, not joined by a joint and not listed as allowed.
 #include "pkmws/bodies/bodies.hpp"
 

@@ -81,7 +81,7 @@ class MomaRig final : public BodyRig {
     std::array<Point, 2> s;
     for (int i = 0; i < 2; ++i) {
       const auto& leg = m_->legs()[static_cast<std::size_t>(i)];
-      const auto q = m_->inverse_leg(i, p, leg.branch);  // seed 000 eq. 5
+      const auto q = m_->inverse_leg(i, p, leg.branch);  // [Vasilic] eq. 5
       if (!q || *q < leg.stroke_min || *q > leg.stroke_max) return std::nullopt;
       s[static_cast<std::size_t>(i)] = m_->slider(i, *q);
     }
@@ -111,7 +111,7 @@ class MomaRig final : public BodyRig {
     for (int i = 0; i < 2; ++i) {
       const auto& leg = m_->legs()[static_cast<std::size_t>(i)];
       const Point a = m_->guide_direction(i);
-      // seed 000 eq. 6: B = a·(P − R); the rod reaches P iff l² − (a × (P − R))² >= 0.
+      // [Vasilic] eq. 6: B = a·(P − R); the rod reaches P iff l² − (a × (P − R))² >= 0.
       const auto b = linear_range(box, [&](Point q) { return dot(a, q - leg.reference); });
       const auto x = linear_range(box, [&](Point q) { return cross(a, q - leg.reference); });
       const double x2_lo = (x[0] <= 0.0 && x[1] >= 0.0) ? 0.0 : std::min(x[0] * x[0], x[1] * x[1]);
@@ -121,7 +121,7 @@ class MomaRig final : public BodyRig {
       const double tiny = 1e-12 * scale;
       if (l2 - x2_lo < -tiny * scale) return std::nullopt;  // the rod cannot reach any point of X
       const double sq_lo = std::sqrt(std::max(0.0, l2 - x2_hi)), sq_hi = std::sqrt(std::max(0.0, l2 - x2_lo));
-      // seed 000 eq. 5: p = B + branch sqrt(l² − (a × w)²)
+      // [Vasilic] eq. 5: p = B + branch sqrt(l² − (a × w)²)
       double lo = leg.branch < 0 ? b[0] - sq_hi : b[0] + sq_lo;
       double hi = leg.branch < 0 ? b[1] - sq_lo : b[1] + sq_hi;
       lo = std::max(lo - tiny, leg.stroke_min);
@@ -265,7 +265,7 @@ class FiveBarRig final : public BodyRig {
       d_lo = std::min(d_lo, d);
       d_hi = std::max(d_hi, d);
     }
-    // Law of cosines (SPEC §1.4): cos beta = (rho² + l1² − l2²) / (2 rho l1).
+    // Law of cosines (docs/theory/five_bar.md): cos beta = (rho² + l1² − l2²) / (2 rho l1).
     auto f = [&](double rho) { return (rho * rho + (l1 - l2) * (l1 + l2)) / (2.0 * rho * l1); };
     double f_lo = std::min(f(rho_lo), f(rho_hi)), f_hi = std::max(f(rho_lo), f(rho_hi));
     if (l1 > l2) {
@@ -275,7 +275,7 @@ class FiveBarRig final : public BodyRig {
     if (f_lo > 1.0 + 1e-12 || f_hi < -1.0 - 1e-12) return std::nullopt;
     const double beta_lo = std::acos(std::clamp(f_hi, -1.0, 1.0)), beta_hi = std::acos(std::clamp(f_lo, -1.0, 1.0));
     const int s = leg.working_mode;
-    // q = psi + s beta (SPEC §1.4 working mode)
+    // q = psi + s beta (docs/theory/five_bar.md working mode)
     const double q_lo = psi_c + d_lo + (s > 0 ? beta_lo : -beta_hi) - 1e-12;
     const double q_hi = psi_c + d_hi + (s > 0 ? beta_hi : -beta_lo) + 1e-12;
     const double span = q_hi - q_lo;

@@ -95,7 +95,7 @@ struct FiveBarCosEps {
 // 3-RPR at a fixed orientation φ: B_j = P + c_j, c_j = R(φ) b'_j; leg vector
 // d_j = B_j - A_j = P - e_j, e_j = A_j - c_j. Unnormalised force direction n_j:
 // J d_j (revolute actuation: perpendicular to the leg) or d_j (prismatic).
-// Rows a_j = [n_j, c_j x n_j] (moments about P, seed 004's f_i), linear in P.
+// Rows a_j = [n_j, c_j x n_j] (moments about P, [Briot]'s f_i), linear in P.
 // Column i of A^{-1} is (a_j x a_k) / det(a_0, a_1, a_2) ((i, j, k) cyclic), and
 // normalising row i by |n_i| = |d_i| = ρ_i multiplies it by ρ_i, so the twist
 // with only actuator i free is t_i = ρ_i (a_j x a_k) / det: v_P,i = its first two
@@ -165,7 +165,7 @@ struct ThreeRprTwist {
       const T vx = p.w0 - ci.y * p.w2, vy = p.w1 + ci.x * p.w2;
       return p.rho2 * (sqr(vx) + sqr(vy)) / sqr(p.det);
     }
-    // SPEC §1.5: R_i,max = f |v_P,i| + |m| |ω_i|.
+    // docs/theory/three_dof.md: R_i,max = f |v_P,i| + |m| |ω_i|.
     const T num = f * sqrt(sqr(p.w0) + sqr(p.w1)) + m * abs(p.w2);
     return sqrt(p.rho2) * num / abs(p.det);
   }
@@ -196,7 +196,7 @@ struct ThreeRprTwist {
 };
 
 // ---------------------------------------------------------------------------
-// Biglide velocity ratio V_i / V_y = |∂q_i/∂y| (seed 003 fig. 8) for the
+// Biglide velocity ratio V_i / V_y = |∂q_i/∂y| ([Strutynskyi] fig. 8) for the
 // paper's branches b_1 = b_2 = -1 (eq. 5-8), docs/theory/biglide.md:
 //   h1 = y + B, w1 = sqrt(l3² - h1²), ∂q1/∂y = -b1 h1 / w1,
 //   ∂v/∂y = (b1 h1 / w1, 1), ∂J/∂y = (∂q1/∂y, 0) + M ∂v/∂y,
@@ -209,7 +209,7 @@ struct BiglideVelocityRatio {
   double m00 = 1.0, m01 = 0.0, m10 = 0.0, m11 = 1.0;
   std::array<std::array<double, 2>, 2> stroke{};
   int leg = 0;
-  static constexpr double b1 = -1.0, b2 = -1.0;  // seed 003 eq. 5-8: minus roots
+  static constexpr double b1 = -1.0, b2 = -1.0;  // [Strutynskyi] eq. 5-8: minus roots
 
   explicit BiglideVelocityRatio(const mechanisms::Biglide& m, int leg_index) : leg(leg_index) {
     const auto& p = m.params();
@@ -287,7 +287,7 @@ const mechanisms::ThreeRpr* as_three_rpr(const io::MechanismFile& file) {
 double five_bar_alpha_deg(const FiveBarCosEps& f, Point p) {
   if (f.domain(Box{p, p}) == CellState::outside) return nan;
   const double ce = std::clamp(f.cos_eps<double>(p.x, p.y), -1.0, 1.0);
-  // α = acos|sin ε| = asin|cos ε| (seed 004).
+  // α = acos|sin ε| = asin|cos ε| ([Briot]).
   return std::asin(std::abs(ce)) / deg;
 }
 
@@ -387,7 +387,7 @@ CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, i
   c.unit = "deg";
   c.key = "three_rpr.vb2_" + std::to_string(leg);
   c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
-  // seed 004: cos α_i = |r_i . v_i| / |v_i| = 1 / |v_i|  =>  α_i <= α  <=>  |v_i|² <= 1 / cos²α.
+  // [Briot]: cos α_i = |r_i . v_i| / |v_i| = 1 / |v_i|  =>  α_i <= α  <=>  |v_i|² <= 1 / cos²α.
   c.level = [](double alpha_deg) {
     const double ca = std::cos(std::clamp(alpha_deg, 0.0, 90.0) * deg);
     return ca > 0.0 ? 1.0 / (ca * ca) : std::numeric_limits<double>::infinity();
@@ -417,7 +417,7 @@ std::vector<CriterionField> fields_for(const io::MechanismFile& file, const std:
     return {biglide_velocity_ratio(*bg, 0), biglide_velocity_ratio(*bg, 1)};
   }
   if (name == "velocity_ratio") {
-    throw io::InputError(file.path + ": velocity-ratio level sets are implemented for the biglide (seed 003), not " +
+    throw io::InputError(file.path + ": velocity-ratio level sets are implemented for the biglide ([Strutynskyi]), not " +
                          file.mechanism);
   }
   if (const auto* fb = as_five_bar(file)) {
@@ -447,7 +447,7 @@ std::vector<CriterionField> fields_for(const io::MechanismFile& file, const std:
       }
     }
     // The platform stays in the assembly mode of the workspace's centre (it
-    // cannot cross the type-2 singularity, seed 004 fig. 12's dashed curve).
+    // cannot cross the type-2 singularity, [Briot] fig. 12's dashed curve).
     const geometry::Box b = rpr->bounds();
     out.push_back(three_rpr_assembly_mode(*rpr, {0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)}));
     return out;

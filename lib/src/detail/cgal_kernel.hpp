@@ -1,4 +1,4 @@
-// The one place that names the CGAL kernel and traits (DESIGN.md). Included
+// The one place that names the CGAL kernel and traits. Included
 // only by lib/src/geometry/*.cpp, the translation units that pay CGAL's
 // compile cost.
 #pragma once

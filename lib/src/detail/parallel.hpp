@@ -1,4 +1,4 @@
-// The one module that calls oneTBB (DESIGN.md): an execution policy (serial, or
+// The one module that calls oneTBB: an execution policy (serial, or
 // parallel on K threads in a tbb::task_arena) and a size threshold below which
 // work runs serially. Work is cut into blocks whose boundaries depend only on
 // the problem size, never on the thread count; callers write one result per

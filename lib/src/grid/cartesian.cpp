@@ -1,4 +1,4 @@
-// Cartesian grid (seed 000 §4.2, fig. 8 with Cartesian q1, q2): the IK test at
+// Cartesian grid ([Vasilic] §4.2, fig. 8 with Cartesian q1, q2): the IK test at
 // every cell centre; area = inside count x cell area.
 #include <algorithm>
 #include <cmath>

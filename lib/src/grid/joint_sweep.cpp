@@ -1,4 +1,4 @@
-// Joint-space sweep (seed 000 §4.1, algorithm of fig. 4): the direct
+// Joint-space sweep ([Vasilic] §4.1, algorithm of fig. 4): the direct
 // kinematics at every sample of a grid over the joint ranges; the valid
 // assembly modes are points of the workspace.
 //

@@ -57,7 +57,7 @@ PKMWS_INLINE std::uint64_t nonnegative(double f) { return (std::bit_cast<std::ui
 // 1 when f > 0 (0.0 - f is +0.0 for f = +-0.0).
 PKMWS_INLINE std::uint64_t positive(double f) { return std::bit_cast<std::uint64_t>(0.0 - f) >> 63; }
 
-// One leg of MOMA (seed 000 eq. 5-6). In the guide frame of leg i, with
+// One leg of MOMA ([Vasilic] eq. 5-6). In the guide frame of leg i, with
 // w = P - R_i, u = a_i . w (eq. 6's B_i) and v = a_i x w, eq. 5 reads
 // p_i = u - t sqrt(l^2 - v^2) (t = -branch; t = +1 for eq. 5's minus root).
 // In the t-frame (u_t = t u, stroke [lo, hi]) the condition lo <= u_t - sqrt(l^2 - v^2) <= hi

@@ -1,4 +1,4 @@
-// Polar grid (seed 000 §4.2, fig. 8 with polar q1 = r, q2 = theta; figs. 9,
+// Polar grid ([Vasilic] §4.2, fig. 8 with polar q1 = r, q2 = theta; figs. 9,
 // 10, 11a): the IK test at one point per ring-sector cell about a centre.
 #include <algorithm>
 #include <cmath>

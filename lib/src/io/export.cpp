@@ -1,4 +1,4 @@
-// Boundary exports (SPEC §2.5): SVG with true arcs, DXF R12 with LINE / ARC /
+// Boundary exports (docs/format.md): SVG with true arcs, DXF R12 with LINE / ARC /
 // CIRCLE, WKT and GeoJSON polylines at a stated tolerance, CSV of the exact
 // curves; and the atomic file writer used for every output file.
 //

@@ -1,4 +1,4 @@
-// The paper-style workspace figure (SPEC §2.5 "plots in the style of the
+// The paper-style workspace figure (docs/format.md "plots in the style of the
 // papers' figures"): white page, light-red exact workspace with a dark outline
 // (true arcs), frame with 1-2-5 ticks in the file's unit, light grid, axes
 // through the origin when visible, scale bar, the mechanism at a pose (guides

@@ -1,6 +1,6 @@
-// biglide files (SPEC §3.1): half_width B, rods [l1, l2], stroke
+// biglide files (docs/format.md): half_width B, rods [l1, l2], stroke
 // [[min, max], [min, max]], optional tool {l3, l4} for the real scheme
-// (seed 003 fig. 4).
+// ([Strutynskyi] fig. 4).
 #include <cmath>
 #include <stdexcept>
 

@@ -1,8 +1,8 @@
-// five_bar files (SPEC §3.1): base [[x, y], [x, y]], proximal [l1, l1'],
+// five_bar files (docs/format.md): base [[x, y], [x, y]], proximal [l1, l1'],
 // distal [l2, l2'], working_mode [s1, s2], optional actuator_limits_deg
 // [[min, max] | null, [min, max] | null] and optional pi_joints (two objects
 // {k, stroke [d_min, d_max], base_angle_deg, sense?}: Π-joints driving the
-// cranks, seed 002 figure 5; docs/theory/five_bar.md).
+// cranks, [Milutinovic] figure 5; docs/theory/five_bar.md).
 #include <cmath>
 #include <numbers>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-// moma files (SPEC §3.1): two legs {reference [x, y], guide_angle_deg,
+// moma files (docs/format.md): two legs {reference [x, y], guide_angle_deg,
 // stroke [pmin, pmax], rod_length, branch}. Lengths in the file's unit.
 #include <cmath>
 #include <numbers>
@@ -34,7 +34,7 @@ MechanismPtr load_moma(JsonReader& document) {
     // Degrees in the file, radians inside. fmod keeps 270 as 270 (so that
     // 270 * pi / 180 folds to an exact axis direction) and tames huge angles.
     leg.guide_angle = std::fmod(r.number("guide_angle_deg"), 360.0) * std::numbers::pi / 180.0;
-    // seed 000 §4.2: 0 <= p_i <= h_max; any pmin < pmax is accepted (a slider
+    // [Vasilic] §4.2: 0 <= p_i <= h_max; any pmin < pmax is accepted (a slider
     // may start behind its reference point).
     const auto stroke = r.interval("stroke");
     leg.stroke_min = stroke[0];

@@ -1,4 +1,4 @@
-// pi_joint files (SPEC §1.3, seed 002): crank_length a, k = b / a,
+// pi_joint files (docs/theory/pi_joint.md, [Milutinovic]): crank_length a, k = b / a,
 // theta_limits_deg [min, max] inside (-90, 90), optional stroke [d_min, d_max]
 // and optional actuator {lead, resolution_per_step, max_speed, max_force_N,
 // efficiency?} (Table 1; lengths in the file's unit).
@@ -28,7 +28,7 @@ MechanismPtr load_pi_joint(JsonReader& document) {
     const double reach_lo = p.kinematics.length(p.theta_min), reach_hi = p.kinematics.length(p.theta_max);
     if (d[1] < reach_lo || d[0] > reach_hi) {
       document.fail("stroke", "does not meet the d range [" + nlohmann::json(reach_lo).dump() + ", " +
-                                  nlohmann::json(reach_hi).dump() + "] of theta_limits_deg (seed 002 eq. 2)");
+                                  nlohmann::json(reach_hi).dump() + "] of theta_limits_deg ([Milutinovic] eq. 2)");
     }
     p.stroke_min = d[0];
     p.stroke_max = d[1];

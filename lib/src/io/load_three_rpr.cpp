@@ -1,4 +1,4 @@
-// three_rpr files (SPEC §3.1): base [[x, y] x 3] (A_i), platform [[x, y] x 3]
+// three_rpr files (docs/format.md): base [[x, y] x 3] (A_i), platform [[x, y] x 3]
 // (B_i in the platform frame), actuation "revolute" (R̲PR: base angles, the
 // planar PAMINSA) or "prismatic" (RP̲R: leg lengths), orientation_deg (the
 // constant orientation of the workspace), optional leg_limits [[min, max] x 3],

@@ -1,4 +1,4 @@
-// three_rrp / three_prp files (SPEC §3.1): base [[x, y] x 3] (O_i), platform
+// three_rrp / three_prp files (docs/format.md): base [[x, y] x 3] (O_i), platform
 // [[x, y] x 3] (B_1, B_2, B_3 in the platform frame, counter-clockwise; the
 // slider of chain i runs on side B_i B_{i+1}); three_rrp: crank_lengths [3],
 // optional crank_limits_deg [[min, max] | null x 3]; three_prp: directions_deg

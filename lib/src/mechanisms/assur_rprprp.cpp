@@ -1,4 +1,4 @@
-// The Assur group RP-RP-RP (seed 001 §3): closed form and the paper's
+// The Assur group RP-RP-RP ([Mitsi] §3): closed form and the paper's
 // elimination (eq. 3-18). Derivations in docs/theory/three_dof.md.
 #include "pkmws/mechanisms/assur_rprprp.hpp"
 

@@ -1,4 +1,4 @@
-// Biglide (seed 003): simplified and real schemes; IK eq. 5-8, DK eq. 1-4,
+// Biglide ([Strutynskyi]): simplified and real schemes; IK eq. 5-8, DK eq. 1-4,
 // zero position eq. 9, velocity ratio V/V_y (fig. 8), Jacobians, statics, and
 // the exact workspace of the simplified scheme (two leg bands).
 #include "mechanisms/common.hpp"
@@ -72,7 +72,7 @@ double Biglide::tool_distance() const { return params_.tool ? params_.tool->l3 :
 double Biglide::gamma() const {
   if (!params_.tool) return 0.0;
   const double l1 = params_.rods[0], l3 = params_.tool->l3, l4 = params_.tool->l4;
-  // Law of cosines in the triangle S_1 J T (seed 003 eq. 3-4, 9).
+  // Law of cosines in the triangle S_1 J T ([Strutynskyi] eq. 3-4, 9).
   return std::acos(std::clamp((l1 * l1 + l3 * l3 - l4 * l4) / (2.0 * l1 * l3), -1.0, 1.0));
 }
 
@@ -89,11 +89,11 @@ std::optional<std::array<double, 2>> Biglide::inverse_joints(Point t, int b1, in
   const double b = params_.half_width;
   const double w1 = leg_reach(tool_distance(), t.y + b);
   if (w1 < 0.0) return std::nullopt;
-  const double q1 = t.x + b1 * w1;  // seed 003 eq. 5 / eq. 7 (b1 = -1)
+  const double q1 = t.x + b1 * w1;  // [Strutynskyi] eq. 5 / eq. 7 (b1 = -1)
   const Point j = joint_of(t, q1);
   const double w2 = leg_reach(params_.rods[1], b - j.y);
   if (w2 < 0.0) return std::nullopt;
-  const double q2 = j.x + b2 * w2;  // seed 003 eq. 6 / eq. 8 (b2 = -1)
+  const double q2 = j.x + b2 * w2;  // [Strutynskyi] eq. 6 / eq. 8 (b2 = -1)
   return std::array<double, 2>{q1, q2};
 }
 
@@ -103,16 +103,16 @@ std::optional<std::array<double, 2>> Biglide::inverse_closed_form(Point t, bool 
   if (!params_.tool) {
     const double r1 = l1 * l1 - (b + y) * (b + y), r2 = l2 * l2 - (b - y) * (b - y);
     if (r1 < 0.0 || r2 < 0.0) return std::nullopt;
-    return std::array<double, 2>{x - std::sqrt(r1), x - std::sqrt(r2)};  // seed 003 eq. 5-6
+    return std::array<double, 2>{x - std::sqrt(r1), x - std::sqrt(r2)};  // [Strutynskyi] eq. 5-6
   }
   const double l3 = params_.tool->l3, l4 = params_.tool->l4;
   if (!(l4 > 0.0)) return std::nullopt;
   const double r1 = l3 * l3 - (b + y) * (b + y);
   if (r1 < 0.0 || std::abs((b + y) / l3) > 1.0) return std::nullopt;
-  const double q1 = x - std::sqrt(r1);  // seed 003 eq. 7
+  const double q1 = x - std::sqrt(r1);  // [Strutynskyi] eq. 7
   const double psi = std::acos((b + y) / l3);
   const double delta = std::acos(std::clamp((l3 * l3 + l4 * l4 - l1 * l1) / (2.0 * l3 * l4), -1.0, 1.0));
-  // seed 003 eq. 8: q2 = x - sqrt(l2² - [B - y - l4 sin(ψ - π/2 + δ)]²) - l4 cos(ψ ∓ δ - π/2),
+  // [Strutynskyi] eq. 8: q2 = x - sqrt(l2² - [B - y - l4 sin(ψ - π/2 + δ)]²) - l4 cos(ψ ∓ δ - π/2),
   // printed with -δ in the last term; the geometry of eq. 3-4 gives +δ.
   const double h = b - y - l4 * std::sin(psi - pi / 2 + delta);
   const double r2 = l2 * l2 - h * h;
@@ -156,7 +156,7 @@ std::optional<Point> Biglide::direct_closed_form(double q1, double q2) const {
   if (!(std::abs(c) <= 1.0)) return std::nullopt;
   const double phi = std::acos(c) - std::atan(dq / (2.0 * b)) + gamma();
   const double l = tool_distance();
-  return Point{l * std::sin(phi) + q1, l * std::cos(phi) - b};  // seed 003 eq. 1-2 (γ = 0) / eq. 3-4
+  return Point{l * std::sin(phi) + q1, l * std::cos(phi) - b};  // [Strutynskyi] eq. 1-2 (γ = 0) / eq. 3-4
 }
 
 Eigen::Matrix2d Biglide::inverse_jacobian(Point t, int b1, int b2) const {
@@ -194,7 +194,7 @@ std::array<double, 2> Biglide::velocity_ratio_y(Point t) const {
 double Biglide::zero_position_rod_length(double b, double l1, double l3, double l4) {
   const double gamma = std::acos(std::clamp((l1 * l1 + l3 * l3 - l4 * l4) / (2.0 * l1 * l3), -1.0, 1.0));
   // Angle at S_1 between S_1 S_2 (+y) and S_1 J at q1 = q2 with T on y = 0:
-  // T is at acos(B / l3) from +y, J at acos(B / l3) - γ (seed 003 eq. 9, corrected sign).
+  // T is at acos(B / l3) from +y, J at acos(B / l3) - γ ([Strutynskyi] eq. 9, corrected sign).
   const double phi0 = std::acos(b / l3) - gamma;
   return std::sqrt(4.0 * b * b + l1 * l1 - 4.0 * b * l1 * std::cos(phi0));
 }
@@ -294,7 +294,7 @@ std::vector<Evaluation> Biglide::evaluate(const Pose& pose, const Criteria& crit
     detail::set_velocity_figures(e, jq, type1, type2);
     if (std::isfinite(*e.velocity_ratio)) {
       e.extra.push_back({"velocity_ratio_worst_direction", *e.velocity_ratio});
-      e.velocity_ratio = std::max(vy[0], vy[1]);  // seed 003 fig. 8: V / V_y
+      e.velocity_ratio = std::max(vy[0], vy[1]);  // [Strutynskyi] fig. 8: V / V_y
     }
     e.extra.push_back({"V1_over_Vy", vy[0]});
     e.extra.push_back({"V2_over_Vy", vy[1]});

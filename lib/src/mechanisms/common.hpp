@@ -74,7 +74,7 @@ void set_velocity_figures(Evaluation& e, const Eigen::Matrix2d& dq_dx, bool type
 
 /// Two legs meeting at a point platform: leg i pushes along its distal rod, and
 /// with actuator j locked the point moves perpendicular to rod j, so
-/// cos(alpha_i) = |sin eps| with eps the angle between the rods (seed 004). The
+/// cos(alpha_i) = |sin eps| with eps the angle between the rods ([Briot]). The
 /// worst force of norm f loads each rod with f / |sin eps|; a point transmits
 /// no moment. Fills pressure_angle_deg and (with a load) reactions_N.
 void set_point_platform_transmission(Evaluation& e, double abs_sin_eps, const Criteria& criteria);

@@ -1,8 +1,8 @@
-// Five-bar 5R (seed 004, DexTAR): inverse kinematics per working mode, robust
+// Five-bar 5R ([Briot], DexTAR): inverse kinematics per working mode, robust
 // direct kinematics (both assembly modes), Jacobians, transmission and
-// pressure angles (seed 004: α = acos|sin ε|), reactions, the exact reachable
+// pressure angles ([Briot]: α = acos|sin ε|), reactions, the exact reachable
 // workspace (annuli, or with crank limits the region swept by each distal
-// circle; docs/theory/five_bar.md), Π-joint drives (seed 002 figure 5) and the
+// circle; docs/theory/five_bar.md), Π-joint drives ([Milutinovic] figure 5) and the
 // type-2 singularity curves.
 #include "mechanisms/common.hpp"
 #include "pkmws/mechanisms/five_bar.hpp"
@@ -97,7 +97,7 @@ FiveBar::FiveBar(std::array<FiveBarLeg, 2> legs) : legs_(legs) {
                                     format_number(kin.length_min()) + ", " + format_number(kin.length_max()) +
                                     ") = (a|1 - k|, a(1 + k)), i.e. -90 < theta < 90 degrees");
       }
-      // seed 002 eq. 3-5 at both ends of the stroke; q = base + sense * theta.
+      // [Milutinovic] eq. 3-5 at both ends of the stroke; q = base + sense * theta.
       const double t_lo = *kin.angle(p.stroke_min), t_hi = *kin.angle(p.stroke_max);
       limits_[i] = p.sense > 0 ? std::array<double, 2>{p.base_angle + t_lo, p.base_angle + t_hi}
                                : std::array<double, 2>{p.base_angle - t_hi, p.base_angle - t_lo};
@@ -113,7 +113,7 @@ std::optional<std::array<double, 2>> FiveBar::crank_limits(int leg) const { retu
 Point FiveBar::elbow(int leg, double q) const { return legs_[leg].base + legs_[leg].proximal * unit(q); }
 
 int FiveBar::working_mode_sign(Point base, Point elbow, Point tool) {
-  const double c = cross(tool - base, elbow - base);  // SPEC §1.4
+  const double c = cross(tool - base, elbow - base);  // docs/theory/five_bar.md
   return c > 0.0 ? 1 : (c < 0.0 ? -1 : 0);
 }
 
@@ -132,7 +132,7 @@ std::optional<double> FiveBar::inverse_leg(int leg, Point c, int s) const {
     if (!(std::abs(cb) <= 1.0 + 1e-12)) return std::nullopt;
     beta = std::acos(std::clamp(cb, -1.0, 1.0));
   }
-  // s = sign(w x (B - A)) = sign(sin(q - ψ)) (SPEC §1.4), so q = ψ + s β.
+  // s = sign(w x (B - A)) = sign(sin(q - ψ)) (docs/theory/five_bar.md), so q = ψ + s β.
   const double q = std::atan2(w.y, w.x) + s * beta;
   return limits_[leg] ? wrap_from(q, (*limits_[leg])[0]) : wrap_pi(q);
 }
@@ -184,13 +184,13 @@ std::optional<double> FiveBar::pi_length(int leg, double q) const {
   if (!l.pi_joint) return std::nullopt;
   const double theta = wrap_pi(l.pi_joint->sense * (q - l.pi_joint->base_angle));
   if (!(std::abs(theta) < pi / 2)) return std::nullopt;
-  return pi_kinematics(l).length(theta);  // seed 002 eq. 2
+  return pi_kinematics(l).length(theta);  // [Milutinovic] eq. 2
 }
 
 std::optional<double> FiveBar::crank_from_pi_length(int leg, double d) const {
   const FiveBarLeg& l = legs_[leg];
   if (!l.pi_joint || !(d >= 0.0)) return std::nullopt;
-  const auto theta = pi_kinematics(l).angle(d);  // seed 002 eq. 3-5
+  const auto theta = pi_kinematics(l).angle(d);  // [Milutinovic] eq. 3-5
   if (!theta) return std::nullopt;
   return l.pi_joint->base_angle + l.pi_joint->sense * *theta;
 }
@@ -317,16 +317,16 @@ std::vector<Evaluation> FiveBar::evaluate(const Pose& pose, const Criteria& crit
     for (int i = 0; i < 2; ++i) {
       if (const auto& p = legs_[i].pi_joint) {
         const double theta = wrap_pi(p->sense * (q[i] - p->base_angle));
-        scale(i, i) = p->sense * pi_kinematics(legs_[i]).jacobian(theta);  // seed 002 eq. 7
+        scale(i, i) = p->sense * pi_kinematics(legs_[i]).jacobian(theta);  // [Milutinovic] eq. 7
         e.extra.push_back({"crank" + std::to_string(i + 1) + "_deg", wrap_pi(q[i]) * rad2deg});
         e.extra.push_back({"theta_pi" + std::to_string(i + 1) + "_deg", theta * rad2deg});
       }
     }
     detail::set_velocity_figures(e, scale * j.B.inverse() * j.A, type1, type2);  // worst |dq| / |dC|
-    // seed 004: cos α_i = |sin ε| for both legs (the force of leg i is along its
+    // [Briot]: cos α_i = |sin ε| for both legs (the force of leg i is along its
     // distal link; with actuator j locked C moves perpendicular to distal link j).
     detail::set_point_platform_transmission(e, std::abs(det_a) / (l12 * l22), criteria);
-    // seed 004 Table 2, chain R̲RR: the elbow and base joints carry the distal
+    // [Briot] Table 2, chain R̲RR: the elbow and base joints carry the distal
     // force R_i; the actuator torque is its moment about A_i,
     // |τ_i| = l_i1 R_i |sin(angle between proximal and distal link)| = R_i |B_ii| / l_i2
     // (N times the file's length unit; the Π-joint's own force is not included).

@@ -1,4 +1,4 @@
-// MOMA (seed 000): inverse kinematics eq. 5-6, robust direct kinematics, the
+// MOMA ([Vasilic]): inverse kinematics eq. 5-6, robust direct kinematics, the
 // paper's closed form eq. 9-12 as a cross-check, Jacobians, singularities,
 // pressure angle and the exact workspace (intersection of two leg bands).
 #include "mechanisms/common.hpp"
@@ -64,16 +64,16 @@ std::optional<double> Moma::inverse_leg(int leg, Point p, int branch) const {
   const MomaLeg& l = legs_[leg];
   const Point a = guide_direction(leg);
   const Point w = p - l.reference;
-  const double b = dot(a, w);  // seed 000 eq. 6: B_i = a_i . (P - R_i)
+  const double b = dot(a, w);  // [Vasilic] eq. 6: B_i = a_i . (P - R_i)
   // B^2 - C = l^2 - (a x w)^2 (eq. 5's discriminant, in a cancellation-free form)
   const double across = std::abs(cross(a, w));
   const double disc = (l.rod_length - across) * (l.rod_length + across);
   if (disc < 0.0) return std::nullopt;
-  return b + branch * std::sqrt(disc);  // seed 000 eq. 5 (branch -1), other root (+1)
+  return b + branch * std::sqrt(disc);  // [Vasilic] eq. 5 (branch -1), other root (+1)
 }
 
 std::vector<MomaAssembly> Moma::direct_all(double p1, double p2) const {
-  // Circle-circle intersection of |P - S1| = l1 and |P - S2| = l2 (seed 000
+  // Circle-circle intersection of |P - S1| = l1 and |P - S2| = l2 ([Vasilic]
   // eq. 7-8 are these two circles). No division by v4 - v1: the construction
   // works along the centre line S1S2 in its own frame (e, n).
   const Point s1 = slider(0, p1), s2 = slider(1, p2);
@@ -107,14 +107,14 @@ std::optional<Point> Moma::direct_closed_form(double p1, double p2, int sign) co
   const Point a1 = guide_direction(0), a2 = guide_direction(1);
   const Point r1 = legs_[0].reference, r2 = legs_[1].reference;
   const double l1 = legs_[0].rod_length, l2 = legs_[1].rod_length;
-  // seed 000 eq. 11
+  // [Vasilic] eq. 11
   const double v1 = 2.0 * (p1 * a1.x + r1.x);
   const double v2 = 2.0 * (p1 * a1.y + r1.y);
   const double v3 = p1 * p1 + 2.0 * p1 * (a1.x * r1.x + a1.y * r1.y) - l1 * l1 + r1.x * r1.x + r1.y * r1.y;
   const double v4 = 2.0 * (p2 * a2.x + r2.x);
   const double v5 = 2.0 * (p2 * a2.y + r2.y);
   const double v6 = p2 * p2 + 2.0 * p2 * (a2.x * r2.x + a2.y * r2.y) - l2 * l2 + r2.x * r2.x + r2.y * r2.y;
-  // seed 000 eq. 12: undefined where v4 = v1 (sliders on one vertical line)
+  // [Vasilic] eq. 12: undefined where v4 = v1 (sliders on one vertical line)
   const double denom = v4 - v1;
   if (std::abs(denom) <= 1e-12 * (std::abs(v4) + std::abs(v1) + 1.0)) return std::nullopt;
   const double v7 = (v6 - v3) / denom;
@@ -124,12 +124,12 @@ std::optional<Point> Moma::direct_closed_form(double p1, double p2, int sign) co
   const double v11 = v7 * v7 - v1 * v7 + v3;
   const double disc = v10 * v10 - 4.0 * v9 * v11;
   if (disc < 0.0) return std::nullopt;
-  const double y = (-v10 + sign * std::sqrt(disc)) / (2.0 * v9);  // seed 000 eq. 10
-  return Point{v7 + y * v8, y};                                   // seed 000 eq. 9
+  const double y = (-v10 + sign * std::sqrt(disc)) / (2.0 * v9);  // [Vasilic] eq. 10
+  return Point{v7 + y * v8, y};                                   // [Vasilic] eq. 9
 }
 
 MomaJacobians Moma::jacobians(Point p, double p1, double p2) const {
-  // d/dt of seed 000 eq. 3: (P - S_i) . dP = ((P - S_i) . a_i) dp_i
+  // d/dt of [Vasilic] eq. 3: (P - S_i) . dP = ((P - S_i) . a_i) dp_i
   MomaJacobians j;
   for (int i = 0; i < 2; ++i) {
     const Point w = p - slider(i, i == 0 ? p1 : p2);

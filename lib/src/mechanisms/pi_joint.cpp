@@ -1,6 +1,6 @@
-// Active Π-joint (seed 002): inverse/direct kinematics eq. 1-5, Jacobians
+// Active Π-joint ([Milutinovic]): inverse/direct kinematics eq. 1-5, Jacobians
 // eq. 7, 9-11, statics eq. 12-15, accelerations eq. 17-20, singularities at
-// θ = ±90°, and the data of the seed's figures 8-12 and 15-17.
+// θ = ±90°, and the data of the paper's figures 8-12 and 15-17.
 #include "mechanisms/common.hpp"
 #include "pkmws/mechanisms/pi_joint.hpp"
 
@@ -30,28 +30,28 @@ constexpr double tol = 1e-9;
 // PiJointKinematics
 
 double PiJointKinematics::length(double theta) const {
-  // seed 002 eq. 2; the radicand (1 - k)² + 2k (1 + sin θ) is never negative.
+  // [Milutinovic] eq. 2; the radicand (1 - k)² + 2k (1 + sin θ) is never negative.
   const double g = 1.0 + k * k + 2.0 * k * std::sin(theta);
   return a * std::sqrt(std::max(0.0, g));
 }
 
 double PiJointKinematics::sin_theta(double d) const {
-  return (d * d - a * a * (1.0 + k * k)) / (2.0 * a * a * k);  // seed 002 eq. 3
+  return (d * d - a * a * (1.0 + k * k)) / (2.0 * a * a * k);  // [Milutinovic] eq. 3
 }
 
 std::optional<double> PiJointKinematics::angle(double d) const {
   const double s = sin_theta(d);
   if (!(std::abs(s) <= 1.0 + 1e-12)) return std::nullopt;
   const double sc = std::clamp(s, -1.0, 1.0);
-  const double c = std::sqrt((1.0 - sc) * (1.0 + sc));  // seed 002 eq. 4 (cos θ >= 0)
-  return std::atan2(sc, c);                              // seed 002 eq. 5
+  const double c = std::sqrt((1.0 - sc) * (1.0 + sc));  // [Milutinovic] eq. 4 (cos θ >= 0)
+  return std::atan2(sc, c);                              // [Milutinovic] eq. 5
 }
 
 double PiJointKinematics::length_min() const { return a * std::abs(1.0 - k); }
 double PiJointKinematics::length_max() const { return a * (1.0 + k); }
 
 double PiJointKinematics::jacobian(double theta) const {
-  // seed 002 eq. 7: J = a k cos θ / sqrt(1 + k² + 2k sin θ) = a² k cos θ / d
+  // [Milutinovic] eq. 7: J = a k cos θ / sqrt(1 + k² + 2k sin θ) = a² k cos θ / d
   const double d = length(theta);
   return d > 0.0 ? a * a * k * std::cos(theta) / d : 0.0;
 }
@@ -59,7 +59,7 @@ double PiJointKinematics::jacobian(double theta) const {
 double PiJointKinematics::jacobian_d(double theta) const { return 2.0 * length(theta); }  // eq. 10
 
 double PiJointKinematics::jacobian_theta(double theta) const {
-  return 2.0 * a * a * k * std::cos(theta);  // seed 002 eq. 11
+  return 2.0 * a * a * k * std::cos(theta);  // [Milutinovic] eq. 11
 }
 
 double PiJointKinematics::jacobian_derivative(double theta) const {
@@ -70,15 +70,15 @@ double PiJointKinematics::jacobian_derivative(double theta) const {
 }
 
 double PiJointKinematics::motor_torque(double force, double lead, double efficiency) {
-  return force * lead / (2.0 * pi * efficiency);  // seed 002 eq. 15
+  return force * lead / (2.0 * pi * efficiency);  // [Milutinovic] eq. 15
 }
 
 double PiJointKinematics::acceleration_from_angular_acceleration(double theta, double theta_ddot) const {
-  return jacobian(theta) * theta_ddot;  // seed 002 eq. 19 (the paper omits the factor θ̈)
+  return jacobian(theta) * theta_ddot;  // [Milutinovic] eq. 19 (the paper omits the factor θ̈)
 }
 
 double PiJointKinematics::acceleration_from_angular_velocity(double theta, double theta_dot) const {
-  // seed 002 eq. 20: J_d⁻¹ (J̇_θ - J̇_d J) θ̇ with J̇_θ = -2a²k sin θ θ̇ and
+  // [Milutinovic] eq. 20: J_d⁻¹ (J̇_θ - J̇_d J) θ̇ with J̇_θ = -2a²k sin θ θ̇ and
   // J̇_d = 2ḋ = 2 J θ̇, which equals (dJ/dθ) θ̇².
   const double jt_dot = -2.0 * a * a * k * std::sin(theta) * theta_dot;
   const double jd_dot = 2.0 * jacobian(theta) * theta_dot;
@@ -87,7 +87,7 @@ double PiJointKinematics::acceleration_from_angular_velocity(double theta, doubl
 
 double PiJointKinematics::acceleration(double theta, double theta_dot, double theta_ddot) const {
   return acceleration_from_angular_acceleration(theta, theta_ddot) +
-         acceleration_from_angular_velocity(theta, theta_dot);  // seed 002 eq. 18
+         acceleration_from_angular_velocity(theta, theta_dot);  // [Milutinovic] eq. 18
 }
 
 double PiJointKinematics::passive_angle(double theta) const {
@@ -165,10 +165,10 @@ std::vector<JointSolution> PiJoint::inverse(const Pose& pose) const {
   JointSolution s;
   s.mode = "parallelogram";
   if (!(std::abs(theta) < pi / 2)) {
-    s.reason = "theta = " + format_number(theta * rad2deg) + " deg outside (-90, 90) deg (seed 002 eq. 1)";
+    s.reason = "theta = " + format_number(theta * rad2deg) + " deg outside (-90, 90) deg ([Milutinovic] eq. 1)";
     return {s};
   }
-  s.joints = {params_.kinematics.length(theta)};  // seed 002 eq. 2
+  s.joints = {params_.kinematics.length(theta)};  // [Milutinovic] eq. 2
   s.reason = range_problem(theta, s.joints[0]);
   s.valid = s.reason.empty();
   return {s};
@@ -180,7 +180,7 @@ std::vector<PoseSolution> PiJoint::direct(std::span<const double> q) const {
   const auto theta = params_.kinematics.angle(d);
   std::vector<PoseSolution> out;
   if (!theta || !(d >= 0.0)) return out;
-  // seed 002 eq. 4 takes cos θ >= 0; the other root π - θ flattens or crosses
+  // [Milutinovic] eq. 4 takes cos θ >= 0; the other root π - θ flattens or crosses
   // the parallelogram and lies outside (-90°, 90°).
   for (int branch : {1, -1}) {
     PoseSolution s;
@@ -193,7 +193,7 @@ std::vector<PoseSolution> PiJoint::direct(std::span<const double> q) const {
     s.pose.x = p.a.x;
     s.pose.y = p.a.y;
     if (branch < 0) {
-      s.reason = "cos theta < 0: outside (-90, 90) deg (seed 002 eq. 4 takes cos theta >= 0)";
+      s.reason = "cos theta < 0: outside (-90, 90) deg ([Milutinovic] eq. 4 takes cos theta >= 0)";
     } else {
       s.reason = range_problem(t, d);
     }
@@ -211,9 +211,9 @@ std::vector<Evaluation> PiJoint::evaluate(const Pose& pose, const Criteria& crit
     return {e};
   }
   const double theta = pose.phi;
-  const double j = kin.jacobian(theta);  // seed 002 eq. 7
+  const double j = kin.jacobian(theta);  // [Milutinovic] eq. 7
   const double d = s.joints[0];
-  // Singularities (seed 002 eq. 9-11): J_θ = 0 at θ = ±90° (direct kinematics),
+  // Singularities ([Milutinovic] eq. 9-11): J_θ = 0 at θ = ±90° (direct kinematics),
   // J_d = 2d = 0 only for k = 1 at θ = -90° (inverse kinematics).
   const bool type2 = std::abs(std::cos(theta)) <= tol;
   const bool type1 = d <= tol * kin.a;
@@ -226,7 +226,7 @@ std::vector<Evaluation> PiJoint::evaluate(const Pose& pose, const Criteria& crit
   e.pressure_angle_deg = {90.0 - mu * rad2deg};  // angle between the diagonal's force and A's velocity
   const double j_m = j * params_.meters_per_unit;  // J in metres per rad
   if (criteria.load) {
-    // Actuator force for an output torque of ±m (seed 002 eq. 14); a force at A is
+    // Actuator force for an output torque of ±m ([Milutinovic] eq. 14); a force at A is
     // carried by the parallelogram's links, not by the actuator alone.
     e.reactions_N = {type2 ? inf : std::abs(criteria.load->moment_Nm / j_m)};
   }
@@ -320,13 +320,13 @@ io::PlotSeries series(const std::string& label, const std::vector<double>& theta
 
 std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
   if (samples < 3) throw std::invalid_argument("pi_joint_figures: samples must be >= 3");
-  const char* source = "seed 002 (Milutinović et al., active Π-joint)";
+  const char* source = "[Milutinovic] (Milutinović et al., active Π-joint)";
   std::vector<PiJointFigure> out;
   const std::vector<double> ks{0.3, 0.4, 0.5};
 
   {  // Figure 8: d(θ) for a = 1 m, k = 0.3, 0.4, 0.5, 1.0, 1.5, θ in [-90°, 90°] (eq. 2)
     PiJointFigure f{8, "pi_joint_fig08_length", {}};
-    f.chart.title = "Diagonal length d(θ), a = 1 m (seed 002 fig. 8)";
+    f.chart.title = "Diagonal length d(θ), a = 1 m ([Milutinovic] fig. 8)";
     f.chart.x_label = "θ [°]";
     f.chart.y_label = "d [m]";
     const auto th = linspace(-90.0, 90.0, samples);
@@ -341,7 +341,7 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
   }
   {  // Figure 9: passive angle φ of the diagonal
     PiJointFigure f{9, "pi_joint_fig09_passive_angle", {}};
-    f.chart.title = "Passive angle φ of the diagonal (seed 002 fig. 9)";
+    f.chart.title = "Passive angle φ of the diagonal ([Milutinovic] fig. 9)";
     f.chart.x_label = "θ [°]";
     f.chart.y_label = "φ [°]";
     const auto th = linspace(-89.5, 89.5, samples);
@@ -356,7 +356,7 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
   }
   {  // Figure 10: transmission angle μ
     PiJointFigure f{10, "pi_joint_fig10_transmission_angle", {}};
-    f.chart.title = "Transmission angle μ (seed 002 fig. 10)";
+    f.chart.title = "Transmission angle μ ([Milutinovic] fig. 10)";
     f.chart.x_label = "θ [°]";
     f.chart.y_label = "μ [°]";
     const auto th = linspace(-90.0, 90.0, samples);
@@ -372,7 +372,7 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
   }
   {  // Figure 11: J(θ), a = 1 m, θ in [-75°, 75°] (eq. 7)
     PiJointFigure f{11, "pi_joint_fig11_jacobian", {}};
-    f.chart.title = "Jacobian J(θ), a = 1 m (seed 002 fig. 11)";
+    f.chart.title = "Jacobian J(θ), a = 1 m ([Milutinovic] fig. 11)";
     f.chart.x_label = "θ [°]";
     f.chart.y_label = "J [m/rad]";
     const auto th = linspace(-75.0, 75.0, samples);
@@ -387,7 +387,7 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
   }
   {  // Figure 12: J⁻¹(θ) (eq. 8)
     PiJointFigure f{12, "pi_joint_fig12_inverse_jacobian", {}};
-    f.chart.title = "Inverse Jacobian J⁻¹(θ), a = 1 m (seed 002 fig. 12)";
+    f.chart.title = "Inverse Jacobian J⁻¹(θ), a = 1 m ([Milutinovic] fig. 12)";
     f.chart.x_label = "θ [°]";
     f.chart.y_label = "J⁻¹ [rad/m]";
     const auto th = linspace(-75.0, 75.0, samples);
@@ -414,7 +414,7 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
   const std::string unit = p.meters_per_unit == 1.0 ? "m" : (p.meters_per_unit == 1e-3 ? "mm" : "length unit");
   {
     PiJointFigure f{15, "pi_joint_fig15_resolution", {}};
-    f.chart.title = "Output angular resolution (seed 002 fig. 15)";
+    f.chart.title = "Output angular resolution ([Milutinovic] fig. 15)";
     f.chart.x_label = "θ [°]";
     f.chart.y_label = "Δθ [°/step]";
     char label[64];
@@ -428,7 +428,7 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
   }
   {
     PiJointFigure f{16, "pi_joint_fig16_angular_velocity", {}};
-    f.chart.title = "Output angular velocity (seed 002 fig. 16)";
+    f.chart.title = "Output angular velocity ([Milutinovic] fig. 16)";
     f.chart.x_label = "θ [°]";
     f.chart.y_label = "θ̇ [°/s]";
     char label[64];
@@ -441,7 +441,7 @@ std::vector<PiJointFigure> pi_joint_figures(const PiJoint& joint, int samples) {
   }
   {
     PiJointFigure f{17, "pi_joint_fig17_torque", {}};
-    f.chart.title = "Output static torque (seed 002 fig. 17)";
+    f.chart.title = "Output static torque ([Milutinovic] fig. 17)";
     f.chart.x_label = "θ [°]";
     f.chart.y_label = "T [N·m]";
     char label[64];

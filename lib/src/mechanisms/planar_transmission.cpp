@@ -1,5 +1,5 @@
-// Seed 004 ("Определение критерия"): w = -A^T R, R = -A^{-T} w, twists with
-// one actuator free, pressure angles and the largest reactions (SPEC §1.5).
+// [Briot] ("Определение критерия"): w = -A^T R, R = -A^{-T} w, twists with
+// one actuator free, pressure angles and the largest reactions (docs/theory/three_dof.md).
 #include "pkmws/mechanisms/planar_transmission.hpp"
 
 #include <algorithm>
@@ -19,7 +19,7 @@ Eigen::Matrix3d wrench_matrix(Point reference, const std::array<ActuationLine, 3
   Eigen::Matrix3d a;
   for (int i = 0; i < 3; ++i) {
     const ActuationLine& l = lines[static_cast<std::size_t>(i)];
-    // seed 004: f_i = [r_i; d_{P Q_i}^T r_i], d^T = [-y, x]: the moment (Q_i - P) x r_i.
+    // [Briot]: f_i = [r_i; d_{P Q_i}^T r_i], d^T = [-y, x]: the moment (Q_i - P) x r_i.
     a(i, 0) = l.direction.x;
     a(i, 1) = l.direction.y;
     a(i, 2) = cross(l.point - reference, l.direction);
@@ -77,7 +77,7 @@ std::array<double, 3> reaction_max(const Transmission& t, const Load& load) {
       r[i] = inf;
       continue;
     }
-    // SPEC §1.5: R_i,max = f |v_P,i| + |m| |ω_i|.
+    // docs/theory/three_dof.md: R_i,max = f |v_P,i| + |m| |ω_i|.
     r[i] = load.force_N * norm(t.twists[i].velocity) + std::abs(load.moment_Nm) * std::abs(t.twists[i].omega);
   }
   return r;
@@ -86,7 +86,7 @@ std::array<double, 3> reaction_max(const Transmission& t, const Load& load) {
 std::array<double, 3> reactions(const Transmission& t, Point force, double moment) {
   std::array<double, 3> r{};
   for (std::size_t i = 0; i < 3; ++i) {
-    // seed 004: R = -A^{-T} w, row i of A^{-T} is t_i^T.
+    // [Briot]: R = -A^{-T} w, row i of A^{-T} is t_i^T.
     r[i] = t.singular ? std::numeric_limits<double>::quiet_NaN()
                       : -(dot(t.twists[i].velocity, force) + t.twists[i].omega * moment);
   }

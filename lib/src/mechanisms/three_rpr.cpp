@@ -1,5 +1,5 @@
-// 3-RPR (seed 004; SPEC §1.5): inverse kinematics, direct kinematics (the
-// sextic for leg lengths, the sinusoid for base angles), seed 004 transmission
+// 3-RPR ([Briot]; docs/theory/three_dof.md): inverse kinematics, direct kinematics (the
+// sextic for leg lengths, the sinusoid for base angles), [Briot] transmission
 // (A matrix, twists, pressure angles, reactions), exact constant-orientation
 // workspace with leg limits. Derivations in docs/theory/three_dof.md.
 #include "pkmws/mechanisms/three_rpr.hpp"
@@ -145,7 +145,7 @@ ThreeRpr::ThreeRpr(std::array<Point, 3> base, std::array<Point, 3> platform, Thr
 ThreeRpr ThreeRpr::symmetric(double base_radius, double platform_radius, ThreeRprActuation actuation,
                              double orientation, std::optional<std::array<std::array<double, 2>, 3>> leg_limits) {
   std::array<Point, 3> a, b;
-  const double theta[3] = {-pi / 2.0, pi / 6.0, 5.0 * pi / 6.0};  // seed 004: θ_i = -90°, 30°, 150°
+  const double theta[3] = {-pi / 2.0, pi / 6.0, 5.0 * pi / 6.0};  // [Briot]: θ_i = -90°, 30°, 150°
   for (std::size_t i = 0; i < 3; ++i) {
     a[i] = base_radius * unit(theta[i]);
     b[i] = platform_radius * unit(theta[i]);
@@ -180,7 +180,7 @@ std::array<ActuationLine, 3> ThreeRpr::actuation_lines(const Pose& pose) const {
   std::array<ActuationLine, 3> lines;
   for (std::size_t i = 0; i < 3; ++i) {
     const Point u = unit(q[i]);
-    // seed 004: f_i = [-sin q_i, cos q_i] for the actuated base revolute.
+    // [Briot]: f_i = [-sin q_i, cos q_i] for the actuated base revolute.
     lines[i] = {b[i], actuation_ == ThreeRprActuation::revolute ? Point{-u.y, u.x} : u};
   }
   return lines;
@@ -486,7 +486,7 @@ std::vector<Evaluation> ThreeRpr::evaluate(const Pose& pose, const Criteria& cri
   for (double a : t.pressure_angle) e.pressure_angle_deg.push_back(a * rad2deg);
   if (criteria.load) {
     for (double r : mechanisms::reaction_max(t, *criteria.load)) e.reactions_N.push_back(r);
-    // seed 004 Table 2, chain RPR: the base and slider joints carry the same
+    // [Briot] Table 2, chain RPR: the base and slider joints carry the same
     // force |f_A| = |f_C| = R_i; the actuator's effort is the torque
     // |τ| = ρ_i R_i (R̲PR: the force acts at B_i perpendicular to the leg) or
     // the force |τ| = R_i (RP̲R). Torques in N times the file's length unit.

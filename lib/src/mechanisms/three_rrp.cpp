@@ -1,6 +1,6 @@
-// 3-RRP and 3-PRP (seed 001; SPEC §1.6): inverse kinematics per working mode,
+// 3-RRP and 3-PRP ([Mitsi]; docs/theory/three_dof.md): inverse kinematics per working mode,
 // direct kinematics through the Assur group RP-RP-RP (closed form, and the
-// seed's elimination as a cross-check), Jacobians, seed 004 transmission, and
+// paper's elimination as a cross-check), Jacobians, [Briot] transmission, and
 // the exact constant-orientation workspace (intersection of three strips).
 // Derivations in docs/theory/three_dof.md.
 #include "pkmws/mechanisms/three_rrp.hpp"
@@ -77,8 +77,8 @@ ThreeRrp::ThreeRrp(ThreeRrpDrive drive, std::array<ThreeRrpChain, 3> chains, std
 
 Point ThreeRrp::external_joint(int chain, double joint) const {
   const ThreeRrpChain& c = chains_[static_cast<std::size_t>(chain)];
-  if (drive_ == ThreeRrpDrive::crank) return c.base + c.crank_length * unit(joint);  // seed 001 eq. 1
-  return c.base + joint * unit(c.direction);                                          // seed 001 eq. 2
+  if (drive_ == ThreeRrpDrive::crank) return c.base + c.crank_length * unit(joint);  // [Mitsi] eq. 1
+  return c.base + joint * unit(c.direction);                                          // [Mitsi] eq. 2
 }
 
 std::array<Point, 3> ThreeRrp::external_joints(std::span<const double> joints) const {

@@ -1,4 +1,4 @@
-// Bodies and link interference (SPEC §3.2; seed 000 §4 end, figures 5, 7, 11).
+// Bodies and link interference (docs/format.md (bodies); [Vasilic] §4 end, figures 5, 7, 11).
 //
 // A mechanism file may list the solid parts that can collide: guide housings
 // and slider blocks (rectangles), rods and links (capsules: segment plus

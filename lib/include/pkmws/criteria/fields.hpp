@@ -1,16 +1,16 @@
 // Transmission criteria as scalar fields over the plane of the platform point
-// P for one working mode (seed 004; SPEC §1.4, §1.5), in the form the
+// P for one working mode ([Briot]; docs/theory/five_bar.md, §1.5), in the form the
 // certified level-set module needs: each criterion c has a smooth surrogate s
 // with the same sub-level sets, c(p) <= t  <=>  s(p) <= level(t), evaluable at
 // points (double), over boxes (intervals) and with derivatives (jets).
 //
-//  * five-bar pressure angle α = acos|sin ε| (seed 004): s = cos²ε,
+//  * five-bar pressure angle α = acos|sin ε| ([Briot]): s = cos²ε,
 //    level(α_max) = sin²α_max; reaction R = f / |sin ε| (no moment reaches C):
 //    the same s with level(R_max) = 1 - (f / R_max)².
 //  * planar 3-DOF (3-RPR) reaction of leg i: R_i,max = f |v_P,i| + |m| |ω_i|
-//    (SPEC §1.5), s = R_i itself (N); pressure angle of leg i:
-//    cos α_i = 1 / |v_B_i| (seed 004: r_i . v_i = 1), s = |v_B_i|², level = 1 / cos²α.
-//  * biglide velocity ratio V_i / V_y = |∂q_i/∂y| (seed 003 fig. 8), one field
+//    (docs/theory/three_dof.md), s = R_i itself (N); pressure angle of leg i:
+//    cos α_i = 1 / |v_B_i| ([Briot]: r_i . v_i = 1), s = |v_B_i|², level = 1 / cos²α.
+//  * biglide velocity ratio V_i / V_y = |∂q_i/∂y| ([Strutynskyi] fig. 8), one field
 //    per leg: s = (∂q_i/∂y)², level(t) = t².
 //
 // Units: lengths in the mechanism's unit, angles in degrees at this interface,
@@ -58,7 +58,7 @@ CriterionField three_rpr_assembly_mode(const mechanisms::ThreeRpr& mechanism, ge
 /// 3-RPR pressure angle α_i of leg `leg` (0-based), degrees.
 CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, int leg);
 
-/// Biglide velocity ratio V_i / V_y = |∂q_i/∂y| of leg `leg` (0-based; seed 003
+/// Biglide velocity ratio V_i / V_y = |∂q_i/∂y| of leg `leg` (0-based; [Strutynskyi]
 /// fig. 8), paper's branches; surrogate (∂q_i/∂y)².
 CriterionField biglide_velocity_ratio(const mechanisms::Biglide& mechanism, int leg);
 

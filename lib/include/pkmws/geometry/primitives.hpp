@@ -45,7 +45,7 @@ Region stadium(Point a, Point b, double r);
 /// Band: a half circle of radius r swept along a segment. The segment runs from
 /// `start` for `length` along direction `angle`; the half circle lies on the
 /// side `side * u` (side = +1 ahead of the moving centre, -1 behind), where u is
-/// the segment direction. The MOMA leg workspace (SPEC §1.1). Area = 2 r length.
+/// the segment direction. The MOMA leg workspace (docs/theory/moma.md). Area = 2 r length.
 Region band(Point start, double angle, double length, double r, int side);
 /// Sector of an annulus: r_inner <= |p - c| <= r_outer with polar angle in
 /// [angle_from, angle_from + sweep], sweep in (0, 2pi]; angles rounded to rational directions.

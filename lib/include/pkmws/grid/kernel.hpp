@@ -1,4 +1,4 @@
-// Point-membership kernels of the grid baseline (SPEC §2.4; seed 000 §4.2,
+// Point-membership kernels of the grid baseline (docs/theory/grid.md; [Vasilic] §4.2,
 // algorithm of fig. 8: a task-space point is in the workspace when the inverse
 // kinematics has a solution within the strokes).
 //

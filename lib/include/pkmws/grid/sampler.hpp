@@ -1,10 +1,10 @@
-// Grid samplers of the reachable workspace (SPEC §2.4): the papers' methods
+// Grid samplers of the reachable workspace (docs/theory/grid.md): the papers' methods
 // and an adaptive variant, through one result type.
-//  - cartesian(): IK test at cell centres of a uniform grid (seed 000 §4.2,
+//  - cartesian(): IK test at cell centres of a uniform grid ([Vasilic] §4.2,
 //    fig. 8 with Cartesian q1, q2); area = inside count x cell area.
 //  - polar():     the same on a polar grid about a centre (fig. 8 with polar
 //    q1, q2; figs. 9-11a); area = sum of the inside cells' ring-cell areas.
-//  - joint_sweep(): the DK over a grid of joint values (seed 000 §4.1, fig. 4),
+//  - joint_sweep(): the DK over a grid of joint values ([Vasilic] §4.1, fig. 4),
 //    the valid poses rasterised onto a uniform grid for an area.
 //  - adaptive():  a quadtree that refines only cells that straddle the boundary.
 // Parallel through one module (lib/src/detail/parallel): fixed blocks, integer
@@ -147,7 +147,7 @@ struct JointSweepResult : SampleResult {
   std::vector<std::uint8_t> mask;
 };
 
-/// Seed 000 fig. 4: every joint sample's valid assembly modes are platform
+/// [Vasilic] fig. 4: every joint sample's valid assembly modes are platform
 /// points of the workspace. Area by rasterisation: with a sweep dense enough
 /// (task-space spacing below a raster cell) every raster cell meeting the
 /// workspace is hit, so area_upper = hit cells x cell area over-estimates by

@@ -1,4 +1,4 @@
-// Boundary export (SPEC §2.5): SVG with true arcs, DXF with ARC/LINE entities,
+// Boundary export (docs/format.md): SVG with true arcs, DXF with ARC/LINE entities,
 // WKT / GeoJSON polylines at a stated tolerance, CSV of the boundary curves.
 #pragma once
 
@@ -61,7 +61,7 @@ struct FigureOptions {
   std::string caption;  // e.g. "area = 73 205.4 mm²"
   bool draw_mechanism = true;
   /// Regions drawn over the workspace in order (e.g. interference regions
-  /// shaded and the real workspace outlined in black, seed 000 figs. 5-11).
+  /// shaded and the real workspace outlined in black, [Vasilic] figs. 5-11).
   struct Overlay {
     geometry::Region region;
     std::string fill = "none";      // SVG colour or "none"

@@ -1,4 +1,4 @@
-// Mechanism files (SPEC §3.1): JSON with `name`, `mechanism`, `units`, the
+// Mechanism files (docs/format.md): JSON with `name`, `mechanism`, `units`, the
 // mechanism's parameters and optional `criteria`, `source`, `description`.
 #pragma once
 
@@ -33,11 +33,11 @@ struct MechanismFile {
   nlohmann::json source;        // paper, figure, notes (free-form object), null if absent
   mechanisms::Criteria criteria;
   /// criteria.reaction_legs: the legs (1-based) whose R_i,max is limited by
-  /// max_reaction_N (seed 004 figs. 12-13 limit the joint B_1 only); empty: every leg.
+  /// max_reaction_N ([Briot] figs. 12-13 limit the joint B_1 only); empty: every leg.
   std::vector<int> reaction_legs;
   nlohmann::json document;      // the validated document as read
   std::shared_ptr<const mechanisms::Mechanism> model;
-  /// The optional `bodies` (SPEC §3.2; moma and five_bar), null when absent.
+  /// The optional `bodies` (docs/format.md (bodies); moma and five_bar), null when absent.
   std::shared_ptr<const bodies::BodyRig> bodies;
 };
 

@@ -1,4 +1,4 @@
-// Line charts of data series as SVG (the seed papers' x-y plots: Π-joint
+// Line charts of data series as SVG (the paper papers' x-y plots: Π-joint
 // figures 8-12 and 15-17, velocity ratios, ...). Plain data, no CGAL.
 #pragma once
 

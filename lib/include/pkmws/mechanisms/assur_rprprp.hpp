@@ -1,16 +1,16 @@
-// The class-3 Assur group RP-RP-RP (seed 001 §3; SPEC §1.6): three external
+// The class-3 Assur group RP-RP-RP ([Mitsi] §3; docs/theory/three_dof.md): three external
 // revolutes A_1, A_2, A_3 at known positions, each on a slider that moves
 // along one side line of a rigid triangle B1B2B3 (the platform of the 3-RRP and
 // 3-PRP): slider i runs on side i, the line B_i B_{i+1}. Position analysis:
 // given the A_i, find every placement of the triangle (every assembly mode).
 //
-// Conventions (reconstructed from seed 001 eq. 3-5 and 14-18, see
+// Conventions (reconstructed from [Mitsi] eq. 3-5 and 14-18, see
 // docs/theory/three_dof.md): the triangle is counter-clockwise; side i has
 // length l_i = |B_i B_{i+1}| and unit direction u_i from B_i to B_{i+1};
 // α_i is the interior angle at B_i; the slider displacement s_i is the signed
 // distance from A_i to B_i along u_i:
 //
-//   B_i = A_i + s_i u_i                                   (seed 001 eq. 14)
+//   B_i = A_i + s_i u_i                                   ([Mitsi] eq. 14)
 //   (s1 + l1)^2 + s2^2 + 2 (s1 + l1) s2 cos α2 = |A1 A2|^2   (eq. 3)
 //   (s2 + l2)^2 + s3^2 + 2 (s2 + l2) s3 cos α3 = |A2 A3|^2   (eq. 4)
 //   (s3 + l3)^2 + s1^2 + 2 (s3 + l3) s1 cos α1 = |A3 A1|^2   (eq. 5)
@@ -68,7 +68,7 @@ struct AssurAssembly {
   std::array<double, 3> s{};         // slider displacements: B_i = A_i + s_i u_i (eq. 14)
 };
 
-/// Closed form (SPEC §1.6 note). Assemblies sorted by phi; none when the
+/// Closed form (docs/theory/three_dof.md note). Assemblies sorted by phi; none when the
 /// A_i all coincide or the sinusoid's amplitude is below l_1.
 std::vector<AssurAssembly> assur_closed_form(const AssurTriangle& triangle, const std::array<Point, 3>& a);
 
@@ -78,10 +78,10 @@ std::vector<AssurAssembly> assur_closed_form(const AssurTriangle& triangle, cons
 std::array<double, 2> assur_scale_sinusoid(const AssurTriangle& triangle, const std::array<Point, 3>& a);
 
 // ---------------------------------------------------------------------------
-// The paper's elimination (seed 001 eq. 9-13), generic in the scalar so that a
+// The paper's elimination ([Mitsi] eq. 9-13), generic in the scalar so that a
 // test can run it in exact rational arithmetic.
 
-/// Coefficients a_ij of seed 001 eq. 9-11:
+/// Coefficients a_ij of [Mitsi] eq. 9-11:
 ///   s1^2 + s2^2 + a11 s1 s2 + a12 s1 + a13 s2 + a14 = 0   (eq. 9)
 ///   s2^2 + s3^2 + a21 s2 s3 + a22 s2 + a23 s3 + a24 = 0   (eq. 10)
 ///   s3^2 + s1^2 + a31 s3 s1 + a32 s3 + a33 s1 + a34 = 0   (eq. 11)
@@ -157,7 +157,7 @@ BiPoly<T> mul(const BiPoly<T>& a, const BiPoly<T>& b) {
 
 }  // namespace assur_detail
 
-/// Bivariate F1(s1, s3) = Res_{s2}(eq. 9, eq. 10) (seed 001 eq. 12), as
+/// Bivariate F1(s1, s3) = Res_{s2}(eq. 9, eq. 10) ([Mitsi] eq. 12), as
 /// coefficients F1[j][i] of s3^j s1^i. Both equations are monic quadratics in
 /// s2, x^2 + p x + q, so their Sylvester resultant is
 /// (q10 - q9)^2 - (p10 - p9)(p9 q10 - q9 p10) = Δp^2 q9 - Δp Δq p9 + Δq^2.
@@ -174,7 +174,7 @@ std::vector<std::vector<T>> assur_first_resultant(const AssurQuadratics<T>& q) {
   return add(add(mul(mul(dp, dp), q9), mul(mul(dp, dq), p9), -1), mul(dq, dq));
 }
 
-/// The eliminant R(s1) = Res_{s3}(eq. 11, F1) (seed 001 eq. 13), ascending
+/// The eliminant R(s1) = Res_{s3}(eq. 11, F1) ([Mitsi] eq. 13), ascending
 /// coefficients of s1^0 ... s1^8. Eq. 11 is monic in s3, s3^2 + p s3 + q, so
 /// with F1 reduced modulo it to α(s1) s3 + β(s1) the Sylvester resultant is
 /// the product over its roots τ1, τ2 of F1(s1, τ): α^2 q - α β p + β^2.
@@ -221,7 +221,7 @@ struct AssurElimination {
   std::vector<AssurAssembly> assemblies;   // the true triangle's placements, sorted by phi
 };
 
-/// The paper's method (seed 001 eq. 9-18). The eliminant is computed in long
+/// The paper's method ([Mitsi] eq. 9-18). The eliminant is computed in long
 /// double; its coefficients of σ^5..σ^8 are roundoff of identically vanishing
 /// terms and are dropped. Real roots: Sturm isolation + Newton; each is polished
 /// on eq. 9-11, back-substituted by eq. 14-18 (every angle from atan2 of its

@@ -1,8 +1,8 @@
 // Biglide: two parallel horizontal guides with sliders S_1 = (q_1, -B) and
-// S_2 = (q_2, +B) (table width 2B) and links of constant length (seed 003;
-// SPEC §1.2).
+// S_2 = (q_2, +B) (table width 2B) and links of constant length ([Strutynskyi];
+// docs/theory/biglide.md).
 //
-// Simplified scheme (seed 003 fig. 1, 3): rods l_1 from S_1 and l_2 from S_2
+// Simplified scheme ([Strutynskyi] fig. 1, 3): rods l_1 from S_1 and l_2 from S_2
 // meet at the tool P.
 // Real scheme (fig. 2, 4): the first link is a rigid triangle S_1 J T with
 // |S_1 J| = l_1, |S_1 T| = l_3, |J T| = l_4; rod l_2 joins S_2 to J and the tool
@@ -24,7 +24,7 @@
 
 namespace pkmws::mechanisms {
 
-/// The tool link of the real scheme (seed 003 fig. 4).
+/// The tool link of the real scheme ([Strutynskyi] fig. 4).
 struct BiglideTool {
   double l3 = 0.0;  // |S_1 T|
   double l4 = 0.0;  // |J T|
@@ -78,14 +78,14 @@ class Biglide final : public Mechanism {
   /// dq/dx (rows q_1, q_2; columns x, y) for branches b_i; infinite entries at
   /// type-1 singularities. Note dq_i/dx = 1.
   Eigen::Matrix2d inverse_jacobian(Point tool, int b1 = -1, int b2 = -1) const;
-  /// The paper's velocity ratio (seed 003 fig. 8): V_i / V_y = |∂q_i/∂y| for a
+  /// The paper's velocity ratio ([Strutynskyi] fig. 8): V_i / V_y = |∂q_i/∂y| for a
   /// tool moving along y at constant x, paper's branches.
   std::array<double, 2> velocity_ratio_y(Point tool) const;
 
-  /// seed 003 eq. 9, in the form consistent with eq. 3-4: the rod length l_2
+  /// [Strutynskyi] eq. 9, in the form consistent with eq. 3-4: the rod length l_2
   /// that puts the tool on y = 0 at q_1 = q_2: l_2² = 4B² + l_1² - 4B l_1 cos(acos(B/l_3) - γ).
   static double zero_position_rod_length(double half_width, double l1, double l3, double l4);
-  /// seed 003 eq. 9 as printed: cos(π/2 - (γ - asin(B/l_3))) (see docs/theory/biglide.md).
+  /// [Strutynskyi] eq. 9 as printed: cos(π/2 - (γ - asin(B/l_3))) (see docs/theory/biglide.md).
   static double zero_position_rod_length_as_printed(double half_width, double l1, double l3, double l4);
 
   // Mechanism

@@ -1,10 +1,10 @@
-// Five-bar 5R planar parallel mechanism (seed 004, DexTAR; SPEC §1.4): base
+// Five-bar 5R planar parallel mechanism ([Briot], DexTAR; docs/theory/five_bar.md): base
 // joints A_1 = A, A_2 = E, actuated cranks (proximal links) A_i B_i of length
 // l_i1 at angle q_i, distal links B_i C of length l_i2 meeting at the tool C.
 // Leg 1 is A B C, leg 2 is E D C. Optionally each crank is driven by an active
-// Π-joint (seed 002 figure 5), whose telescopic length d is then the joint.
+// Π-joint ([Milutinovic] figure 5), whose telescopic length d is then the joint.
 //
-// Working mode of leg i (SPEC §1.4): s_i = sign((C - A_i) x (B_i - A_i)).
+// Working mode of leg i (docs/theory/five_bar.md): s_i = sign((C - A_i) x (B_i - A_i)).
 // Assembly mode of a DK solution: the side of B->D on which C lies.
 //
 // Lengths are in the file's unit, angles in radians.
@@ -21,7 +21,7 @@
 
 namespace pkmws::mechanisms {
 
-/// A Π-joint driving the crank of a five-bar leg (seed 002 figure 5): its crank
+/// A Π-joint driving the crank of a five-bar leg ([Milutinovic] figure 5): its crank
 /// length a is the leg's proximal length, so it only adds k, the d stroke and
 /// how it is mounted: crank angle q = base_angle + sense * θ_Π.
 struct FiveBarPiDrive {
@@ -81,7 +81,7 @@ class FiveBar final : public Mechanism {
   /// ε: signed angle from distal link 1 (C - B) to distal link 2 (C - D), in (-pi, pi].
   double transmission_angle(Point c, double q1, double q2) const;
 
-  /// Π-driven legs: d from a crank angle (seed 002 eq. 2) and back (eq. 3-5).
+  /// Π-driven legs: d from a crank angle ([Milutinovic] eq. 2) and back (eq. 3-5).
   /// nullopt when θ_Π leaves (-90°, 90°) / d is out of the parallelogram's range.
   std::optional<double> pi_length(int leg, double q) const;
   std::optional<double> crank_from_pi_length(int leg, double d) const;

@@ -48,13 +48,13 @@ struct PoseSolution {
 };
 
 /// Load applied at the platform point P: force of norm `force_N` in any
-/// direction, moment +-`moment_Nm` (SPEC §1.5).
+/// direction, moment +-`moment_Nm` (docs/theory/three_dof.md).
 struct Load {
   double force_N = 0.0;
   double moment_Nm = 0.0;
 };
 
-/// Optional criteria from the mechanism file (SPEC §3.1).
+/// Optional criteria from the mechanism file (docs/format.md).
 struct Criteria {
   std::optional<double> max_pressure_angle_deg;
   std::optional<double> max_reaction_N;
@@ -120,7 +120,7 @@ class Mechanism {
   /// (each level halves the bound width).
   virtual certified::CertifiedRegion workspace_enclosure(int max_depth = 9) const;
   /// Point-membership test of the reachable workspace in double arithmetic
-  /// (the grid baseline's test; SPEC §2.4).
+  /// (the grid baseline's test; docs/theory/grid.md).
   virtual bool reachable(const Pose& pose) const = 0;
   /// The mechanism at a pose, for figures.
   virtual Drawing draw(const Pose& pose) const = 0;

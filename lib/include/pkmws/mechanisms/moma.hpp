@@ -1,6 +1,6 @@
 // MOMA: reconfigurable 2-DOF planar parallel mechanism with two prismatic
 // actuated guides and two rods of constant length meeting at the platform
-// point P (seed 000; SPEC §1.1).
+// point P ([Vasilic]; docs/theory/moma.md).
 #pragma once
 
 #include <array>
@@ -21,7 +21,7 @@ struct MomaLeg {
   double stroke_min = 0.0;     // p_i range
   double stroke_max = 0.0;
   double rod_length = 0.0;     // l_i
-  int branch = -1;             // -1: seed 000 eq. 5 (minus root); +1: the other root
+  int branch = -1;             // -1: [Vasilic] eq. 5 (minus root); +1: the other root
 };
 
 /// A P of the DK with the rods' geometry at that pose.
@@ -30,7 +30,7 @@ struct MomaAssembly {
   int sign = 0;  // +1 / -1: side of the line S1S2 on which P lies (cross(S2-S1, P-S1))
 };
 
-/// Velocity relation A dP = B dp from differentiating seed 000 eq. 3.
+/// Velocity relation A dP = B dp from differentiating [Vasilic] eq. 3.
 struct MomaJacobians {
   Eigen::Matrix2d A;  // rows (P - S_i)^T
   Eigen::Matrix2d B;  // diag((P - S_i) . a_i)
@@ -47,7 +47,7 @@ class Moma final : public Mechanism {
   /// Slider position S_i = R_i + p a_i.
   Point slider(int leg, double p) const;
 
-  /// Seed 000 eq. 5-6 for leg i with the given branch (-1 eq. 5, +1 other root);
+  /// [Vasilic] eq. 5-6 for leg i with the given branch (-1 eq. 5, +1 other root);
   /// nullopt when B^2 - C < 0 (P out of reach of the rod).
   std::optional<double> inverse_leg(int leg, Point p, int branch) const;
 
@@ -55,7 +55,7 @@ class Moma final : public Mechanism {
   /// circles about S1, S2; 0, 1 (tangent) or 2 assembly modes.
   std::vector<MomaAssembly> direct_all(double p1, double p2) const;
 
-  /// The paper's closed form (seed 000 eq. 9-12), kept as a cross-check:
+  /// The paper's closed form ([Vasilic] eq. 9-12), kept as a cross-check:
   /// nullopt where it is undefined (v4 == v1, or a negative discriminant).
   /// `sign` is the +- of eq. 10 (+1 for M2, -1 otherwise).
   std::optional<Point> direct_closed_form(double p1, double p2, int sign) const;

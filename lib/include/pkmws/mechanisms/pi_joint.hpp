@@ -1,13 +1,13 @@
-// Active Π-joint (seed 002; SPEC §1.3): a planar parallelogram with links a
+// Active Π-joint ([Milutinovic]; docs/theory/pi_joint.md): a planar parallelogram with links a
 // (cranks) and b = k a (fixed link and coupler) and a telescopic diagonal of
 // length d (the actuator). Its output is the crank angle θ, -90° < θ < 90°,
 // measured from the normal of the fixed link; the coupler translates on a
 // circle of radius a, so the joint replaces an actuated revolute joint plus a
-// proximal link of length a (seed 002 figure 5).
+// proximal link of length a ([Milutinovic] figure 5).
 //
 // Frame (docs/theory/pi_joint.md): fixed pivots O = (0, 0) and O' = (b, 0),
 // crank direction u(θ) = (sin θ, cos θ), coupler ends Q = O + a u, A = O' + a u;
-// the diagonal is O A, so d² = a² + b² + 2ab sin θ (seed 002 eq. 1).
+// the diagonal is O A, so d² = a² + b² + 2ab sin θ ([Milutinovic] eq. 1).
 //
 // Lengths are in the caller's unit; angles in radians.
 #pragma once
@@ -22,55 +22,55 @@
 namespace pkmws::mechanisms {
 
 /// Kinematics and statics of the Π-joint with crank length a and ratio k = b / a
-/// (seed 002 §4.1). Pure functions of (a, k); θ in radians, lengths in a's unit.
+/// ([Milutinovic] §4.1). Pure functions of (a, k); θ in radians, lengths in a's unit.
 struct PiJointKinematics {
   double a = 1.0;  // crank length
   double k = 0.4;  // b / a
 
   double b() const { return k * a; }
-  /// seed 002 eq. 2: d = a sqrt(1 + k² + 2k sin θ).
+  /// [Milutinovic] eq. 2: d = a sqrt(1 + k² + 2k sin θ).
   double length(double theta) const;
-  /// seed 002 eq. 3: sin θ = (d² - a²(1 + k²)) / (2a²k).
+  /// [Milutinovic] eq. 3: sin θ = (d² - a²(1 + k²)) / (2a²k).
   double sin_theta(double d) const;
-  /// seed 002 eq. 3-5 with cos θ >= 0 (eq. 4); nullopt when |sin θ| > 1.
+  /// [Milutinovic] eq. 3-5 with cos θ >= 0 (eq. 4); nullopt when |sin θ| > 1.
   std::optional<double> angle(double d) const;
   /// Range of d over -90° <= θ <= 90°: [a |1 - k|, a (1 + k)].
   double length_min() const;
   double length_max() const;
 
-  /// seed 002 eq. 7: J = dd/dθ = a k cos θ / sqrt(1 + k² + 2k sin θ) (length / rad).
+  /// [Milutinovic] eq. 7: J = dd/dθ = a k cos θ / sqrt(1 + k² + 2k sin θ) (length / rad).
   double jacobian(double theta) const;
-  /// seed 002 eq. 10: J_d = -∂F/∂d = 2d.
+  /// [Milutinovic] eq. 10: J_d = -∂F/∂d = 2d.
   double jacobian_d(double theta) const;
-  /// seed 002 eq. 11: J_θ = ∂F/∂θ = 2 a² k cos θ.
+  /// [Milutinovic] eq. 11: J_θ = ∂F/∂θ = 2 a² k cos θ.
   double jacobian_theta(double theta) const;
   /// dJ/dθ = -a k (k + sin θ)(1 + k sin θ) / (1 + k² + 2k sin θ)^{3/2} (length / rad²).
   double jacobian_derivative(double theta) const;
 
-  /// seed 002 eq. 13: output torque T = J F (force x length unit).
+  /// [Milutinovic] eq. 13: output torque T = J F (force x length unit).
   double torque(double theta, double force) const { return jacobian(theta) * force; }
-  /// seed 002 eq. 14: actuator force F = T / J.
+  /// [Milutinovic] eq. 14: actuator force F = T / J.
   double force(double theta, double torque) const { return torque / jacobian(theta); }
-  /// seed 002 eq. 15: motor torque T_M = F h / (2π η) for a screw of lead h.
+  /// [Milutinovic] eq. 15: motor torque T_M = F h / (2π η) for a screw of lead h.
   static double motor_torque(double force, double lead, double efficiency);
 
-  /// seed 002 eq. 19: the part J θ̈ of the diagonal's acceleration.
+  /// [Milutinovic] eq. 19: the part J θ̈ of the diagonal's acceleration.
   double acceleration_from_angular_acceleration(double theta, double theta_ddot) const;
-  /// seed 002 eq. 20: the part J_d⁻¹(J̇_θ - J̇_d J) θ̇ = (dJ/dθ) θ̇²
+  /// [Milutinovic] eq. 20: the part J_d⁻¹(J̇_θ - J̇_d J) θ̇ = (dJ/dθ) θ̇²
   /// (the paper prints θ̇; the factor is θ̇², docs/theory/pi_joint.md).
   double acceleration_from_angular_velocity(double theta, double theta_dot) const;
-  /// seed 002 eq. 18: d̈ = J θ̈ + J_d⁻¹(J̇_θ - J̇_d J) θ̇.
+  /// [Milutinovic] eq. 18: d̈ = J θ̈ + J_d⁻¹(J̇_θ - J̇_d J) θ̇.
   double acceleration(double theta, double theta_dot, double theta_ddot) const;
 
   /// Passive angle φ of the diagonal O A, measured like θ from the normal of the
-  /// fixed link: φ = atan2(k + sin θ, cos θ) (seed 002 figure 9).
+  /// fixed link: φ = atan2(k + sin θ, cos θ) ([Milutinovic] figure 9).
   double passive_angle(double theta) const;
   /// Transmission angle μ = φ - θ between the diagonal and the crank at A,
-  /// 0 < μ <= 90° inside (-90°, 90°); J = a sin μ (seed 002 figure 10).
+  /// 0 < μ <= 90° inside (-90°, 90°); J = a sin μ ([Milutinovic] figure 10).
   double transmission_angle(double theta) const;
 };
 
-/// The telescopic actuator of the prototype (seed 002 Table 1). Lengths in the
+/// The telescopic actuator of the prototype ([Milutinovic] Table 1). Lengths in the
 /// file's unit.
 struct PiJointActuator {
   double lead = 0.0;                 // screw lead h (per revolution)
@@ -124,7 +124,7 @@ class PiJoint final : public Mechanism {
   PiJointParams params_;
 };
 
-/// One of the seed's figures as data: `number` is the seed 002 figure number,
+/// One of the paper's figures as data: `number` is the [Milutinovic] figure number,
 /// `stem` a file name ("pi_joint_fig08_length"), `chart` the series.
 struct PiJointFigure {
   int number = 0;
@@ -132,7 +132,7 @@ struct PiJointFigure {
   io::LineChart chart;
 };
 
-/// The curves of seed 002 figures 8-12 (the paper's generic study: a = 1 m,
+/// The curves of [Milutinovic] figures 8-12 (the paper's generic study: a = 1 m,
 /// k in {0.3, 0.4, 0.5} (and 1.0, 1.5 in figure 8)) and figures 15-17 (the
 /// prototype `joint` over its θ range with its actuator: output angular
 /// resolution, angular velocity at the maximal linear speed, static torque at

@@ -1,5 +1,5 @@
-// Force transmission of a planar 3-DOF parallel mechanism (seed 004,
-// "Определение критерия"; SPEC §1.5): each chain i transmits to the platform a
+// Force transmission of a planar 3-DOF parallel mechanism ([Briot],
+// "Определение критерия"; docs/theory/three_dof.md): each chain i transmits to the platform a
 // force R_i r_i along a known line of action (unit direction r_i through a
 // point Q_i). With the wrench w = [f; m] of the external load referred to the
 // reference point P:

@@ -1,12 +1,12 @@
-// 3-RPR planar parallel mechanism (seed 004; SPEC §1.5): base revolutes A_i,
+// 3-RPR planar parallel mechanism ([Briot]; docs/theory/three_dof.md): base revolutes A_i,
 // legs A_i B_i of variable length ρ_i (prismatic), platform revolutes
 // B_i = P + R(phi) b'_i. Two actuations:
 //  * revolute (R̲PR, the planar PAMINSA): the base angles q_i of the legs are
 //    actuated; leg i transmits a force through B_i perpendicular to the leg;
 //  * prismatic (RP̲R): the leg lengths ρ_i are actuated; the force is along the leg.
 //
-// Transmission (seed 004): A rows f_i = [r_i; (B_i - Q) x r_i] about a
-// reference point Q (the seed reduces to B_1), w = -A^T R; twists, pressure
+// Transmission ([Briot]): A rows f_i = [r_i; (B_i - Q) x r_i] about a
+// reference point Q (the paper reduces to B_1), w = -A^T R; twists, pressure
 // angles and R_i,max from planar_transmission.hpp. Type-2 singularity:
 // det A = 0. Velocity relation A [v_P; ω] = B q̇: prismatic B = I
 // (ρ̇_i = u_i . v_B_i), revolute B = diag(ρ_i) (ρ_i q̇_i = u_i^⊥ . v_B_i).
@@ -73,7 +73,7 @@ class ThreeRpr final : public Mechanism {
            double orientation = 0.0, std::optional<std::array<std::array<double, 2>, 3>> leg_limits = std::nullopt,
            std::optional<geometry::Box> analysis_window = std::nullopt);
 
-  /// The symmetric design of seed 004 (PAMINSA): A_i = R_b u(θ_i),
+  /// The symmetric design of [Briot] (PAMINSA): A_i = R_b u(θ_i),
   /// b'_i = R_p u(θ_i), θ = -90°, 30°, 150°.
   static ThreeRpr symmetric(double base_radius, double platform_radius, ThreeRprActuation actuation,
                             double orientation = 0.0,
@@ -96,11 +96,11 @@ class ThreeRpr final : public Mechanism {
   /// Lines of action of the forces the legs transmit: through B_i, along the
   /// leg (prismatic) or perpendicular to it, r_i = (-sin q_i, cos q_i) (revolute).
   std::array<ActuationLine, 3> actuation_lines(const Pose& pose) const;
-  /// Seed 004's A (w = -A^T R) referred to `reference` (the seed uses B_1).
+  /// [Briot]'s A (w = -A^T R) referred to `reference` (the paper uses B_1).
   Eigen::Matrix3d wrench_matrix(const Pose& pose, Point reference) const;
   /// Twists, pressure angles, levers about P (planar_transmission.hpp).
   Transmission transmission(const Pose& pose) const;
-  /// R_i,max = f |v_P,i| + |m| |ω_i| (SPEC §1.5), N.
+  /// R_i,max = f |v_P,i| + |m| |ω_i| (docs/theory/three_dof.md), N.
   std::array<double, 3> reaction_max(const Pose& pose, const Load& load) const;
   ThreeRprJacobians jacobians(const Pose& pose) const;
   /// det A = 0 (within 1e-9 of the scale): lines of action concurrent or parallel.

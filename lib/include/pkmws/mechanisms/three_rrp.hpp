@@ -1,9 +1,9 @@
-// 3-RRP and 3-PRP planar parallel mechanisms (seed 001; SPEC §1.6): three
+// 3-RRP and 3-PRP planar parallel mechanisms ([Mitsi]; docs/theory/three_dof.md): three
 // actuated chains move the external revolutes A_i of the Assur group RP-RP-RP
 // (assur_rprprp.hpp), whose slider i runs on side line i = B_i B_{i+1} of the
 // platform triangle.
 //
-//   3-RRP: A_i = O_i + r_i (cos φ_i, sin φ_i), joint φ_i the crank angle   (seed 001 eq. 1)
+//   3-RRP: A_i = O_i + r_i (cos φ_i, sin φ_i), joint φ_i the crank angle   ([Mitsi] eq. 1)
 //   3-PRP: A_i = O_i + s_i (cos δ_i, sin δ_i), joint s_i along direction δ_i (eq. 2)
 //
 // Pose: the platform frame's origin P (the tool point) and its rotation phi;
@@ -85,7 +85,7 @@ class ThreeRrp final : public Mechanism {
   /// The constant orientation of workspace() (the file's orientation_deg), radians.
   double orientation() const { return orientation_; }
 
-  /// A_i from the joint value (seed 001 eq. 1-2).
+  /// A_i from the joint value ([Mitsi] eq. 1-2).
   Point external_joint(int chain, double joint) const;
   /// Platform points B_1, B_2, B_3 at a pose.
   std::array<Point, 3> platform_points(const Pose& pose) const;
@@ -96,12 +96,12 @@ class ThreeRrp final : public Mechanism {
   std::string limit_problem(int chain, double joint) const;
 
   /// Direct kinematics by the closed form (assur_closed_form) and by the
-  /// seed's elimination (assur_elimination), for joint values q (size 3).
+  /// paper's elimination (assur_elimination), for joint values q (size 3).
   std::vector<AssurAssembly> direct_closed_form(std::span<const double> joints) const;
   AssurElimination direct_elimination(std::span<const double> joints) const;
 
   ThreeRrpJacobians jacobians(const Pose& pose, std::span<const double> joints) const;
-  /// Lines of action (through A_i along n_i) and the seed 004 analysis about P.
+  /// Lines of action (through A_i along n_i) and the [Briot] analysis about P.
   Transmission transmission(const Pose& pose, std::span<const double> joints) const;
 
   /// Range [lo, hi] of n_i . P allowed by chain i at orientation phi (the
