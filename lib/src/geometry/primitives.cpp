@@ -85,11 +85,25 @@ std::vector<KPoint> clip(const std::vector<KPoint>& poly, const FT& a, const FT&
   return out;
 }
 
+// Twice the signed area, summed with the exact value forced at every step.
+// Polygon_2::area() sums lazily, so a polygon of n vertices builds a
+// construction DAG n deep whose exact evaluation recurses n deep: a cell
+// region of a few thousand vertices overflowed the stack.
+FT twice_signed_area(const std::vector<KPoint>& vertices) {
+  FT sum(0);
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const KPoint& p = vertices[i];
+    const KPoint& q = vertices[(i + 1) % vertices.size()];
+    sum = FT(CGAL::exact(sum + (p.x() * q.y() - q.x() * p.y())));
+  }
+  return sum;
+}
+
 Region polygon_region(const std::vector<KPoint>& vertices) {
   if (vertices.size() < 3) return Region();
   CGAL::Polygon_2<detail::Kernel> pg(vertices.begin(), vertices.end());
   if (!pg.is_simple()) throw std::invalid_argument("polygon is not simple (it self-intersects)");
-  if (pg.orientation() == CGAL::COLLINEAR || CGAL::is_zero(pg.area())) return Region();
+  if (pg.orientation() == CGAL::COLLINEAR || CGAL::is_zero(twice_signed_area(vertices))) return Region();
   if (pg.orientation() == CGAL::CLOCKWISE) pg.reverse_orientation();
   std::vector<Curve> loop;
   for (auto e = pg.edges_begin(); e != pg.edges_end(); ++e) loop.push_back(segment(e->source(), e->target()));
