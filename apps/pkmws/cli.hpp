@@ -33,6 +33,7 @@ void add_plot(CLI::App& app, std::vector<Command>& commands);
 void add_grid(CLI::App& app, std::vector<Command>& commands);     // grid baseline
 void add_compare(CLI::App& app, std::vector<Command>& commands);  // exact vs grid
 void add_levels(CLI::App& app, std::vector<Command>& commands);   // criterion bands (levels.cpp)
+void add_sweep(CLI::App& app, std::vector<Command>& commands);    // design-space sweeps (sweep.cpp)
 /// `pkmws area` for a file with `criteria` limits: certified area bounds of the
 /// limited workspace (levels.cpp); `tolerance` relative to the area.
 Json criteria_area_report(const io::MechanismFile& mech, double tolerance);
@@ -59,8 +60,9 @@ certified::CertifiedRegion workspace_enclosure_of(const io::MechanismFile& file)
 /// A pose inside the workspace for drawing the mechanism (largest component's
 /// centroid when inside, else the centre of its largest inscribed circle).
 mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Region& region);
-/// Area, components and their figures, as in `pkmws area --json`.
-Json region_report(const geometry::Region& region, double min_area);
+/// Area, components and their figures, as in `pkmws area --json`; the
+/// inscribed rectangle to a relative width of `rectangle_precision`.
+Json region_report(const geometry::Region& region, double min_area, double rectangle_precision = 1e-6);
 /// Length unit squared, e.g. "mm²".
 std::string area_unit(const io::MechanismFile& file);
 

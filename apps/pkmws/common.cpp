@@ -5,6 +5,7 @@
 
 #include "cli.hpp"
 #include "pkmws/geometry/inscribed.hpp"
+#include "pkmws/geometry/inscribed_rectangle.hpp"
 
 namespace pkmws::cli {
 
@@ -87,11 +88,21 @@ mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Regi
   return {circle.center.x, circle.center.y, 0.0};
 }
 
-Json region_report(const geometry::Region& region, double min_area) {
+Json rectangle_json(const geometry::InscribedRectangle& r) {
+  return Json{{"box", box_json(r.box)},
+              {"width", r.box.width()},
+              {"height", r.box.height()},
+              {"area", r.area},
+              {"area_upper", r.area_upper},
+              {"verified", r.verified}};
+}
+
+Json region_report(const geometry::Region& region, double min_area, double rectangle_precision) {
   Json comps = Json::array();
   double area = 0.0;
   for (const auto& c : region.components(min_area)) {
     const auto circle = geometry::largest_inscribed_circle(c, precision_for(c.bbox));
+    const auto rect = geometry::largest_inscribed_rectangle(c, rectangle_precision, {}, &region);
     comps.push_back(Json{{"area", c.area},
                          {"perimeter", c.perimeter},
                          {"holes", c.holes.size()},
@@ -100,7 +111,8 @@ Json region_report(const geometry::Region& region, double min_area) {
                          {"inscribed_circle",
                           {{"center", point_json(circle.center)},
                            {"radius", circle.radius},
-                           {"radius_upper", circle.radius_upper}}}});
+                           {"radius_upper", circle.radius_upper}}},
+                         {"inscribed_rectangle", rectangle_json(rect)}});
     area += c.area;
   }
   return Json{{"area", area}, {"components", comps}, {"bbox", box_json(region.bbox())},

@@ -1,0 +1,460 @@
+#include "pkmws/geometry/inscribed_rectangle.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <queue>
+#include <stdexcept>
+
+#include "pkmws/geometry/inscribed.hpp"
+#include "pkmws/geometry/primitives.hpp"
+
+namespace pkmws::geometry {
+
+namespace {
+
+struct YRange {
+  double lo;
+  double hi;
+};
+
+// y on the half circle (sigma = +1 upper, -1 lower) above/below x; the
+// product (r - d)(r + d) keeps the relative error of the root small near the
+// circle's leftmost and rightmost points.
+double circle_y(const Curve& c, double sigma, double x) {
+  const double d = x - c.center.x;
+  return c.center.y + sigma * std::sqrt(std::max(0.0, (c.radius - d) * (c.radius + d)));
+}
+
+// y-range of the part of an x-monotone piece from p0 to p1 (a segment, or a
+// half-circle piece of side sigma) with a <= x <= b.
+std::optional<YRange> clip_piece(const Curve& c, Point p0, Point p1, double sigma, double a, double b) {
+  if (p0.x > p1.x) std::swap(p0, p1);
+  const double u = std::max(p0.x, a), v = std::min(p1.x, b);
+  if (u > v) return std::nullopt;
+  const auto y_at = [&](double x) {
+    if (x == p0.x) return p0.y;
+    if (x == p1.x) return p1.y;
+    if (c.kind == Curve::Kind::segment) return p0.y + (x - p0.x) * (p1.y - p0.y) / (p1.x - p0.x);
+    return circle_y(c, sigma, x);
+  };
+  const double yu = y_at(u), yv = y_at(v);
+  YRange r{std::min(yu, yv), std::max(yu, yv)};
+  if (c.kind == Curve::Kind::arc && u <= c.center.x && c.center.x <= v) {
+    if (sigma > 0) r.hi = std::max(r.hi, c.center.y + c.radius);
+    else r.lo = std::min(r.lo, c.center.y - c.radius);
+  }
+  return r;
+}
+
+// Appends the y-ranges of the parts of `c` with a <= x <= b.
+void clip_curve(const Curve& c, double a, double b, std::vector<YRange>& out) {
+  if (c.kind == Curve::Kind::segment) {
+    if (c.source.x == c.target.x) {
+      if (a <= c.source.x && c.source.x <= b) {
+        out.push_back({std::min(c.source.y, c.target.y), std::max(c.source.y, c.target.y)});
+      }
+      return;
+    }
+    if (auto r = clip_piece(c, c.source, c.target, 0.0, a, b)) out.push_back(*r);
+    return;
+  }
+  if (c.center.x + c.radius < a || c.center.x - c.radius > b) return;
+  // Counter-clockwise from `start` over `span`, split where the circle turns
+  // in x (multiples of pi): each piece lies on one half circle.
+  const double s = c.sweep();
+  const Point from = s >= 0 ? c.source : c.target;
+  const Point to = s >= 0 ? c.target : c.source;
+  const double start = std::atan2(from.y - c.center.y, from.x - c.center.x);
+  const double end = start + std::abs(s);
+  const double pi = std::numbers::pi;
+  double t0 = start;
+  Point p0 = from;
+  for (double m = std::floor(start / pi) + 1.0;; m += 1.0) {
+    const bool last = m * pi >= end;
+    const double t1 = last ? end : m * pi;
+    const Point p1 = last ? to : Point{c.center.x + (std::fmod(m, 2.0) == 0.0 ? c.radius : -c.radius), c.center.y};
+    // The piece [t0, t1] lies in [(m - 1) pi, m pi]: upper half when m - 1 is even.
+    const double sigma = std::fmod(std::abs(m - 1.0), 2.0) == 0.0 ? 1.0 : -1.0;
+    if (t1 > t0) {
+      if (auto r = clip_piece(c, p0, p1, sigma, a, b)) out.push_back(*r);
+    }
+    if (last) break;
+    t0 = t1;
+    p0 = p1;
+  }
+}
+
+template <class F>
+void for_each_curve(const Component& component, F&& f) {
+  for (const Curve& c : component.outer.curves) f(c);
+  for (const Loop& h : component.holes) {
+    for (const Curve& c : h.curves) f(c);
+  }
+}
+
+double scale_of(const Box& b) {
+  return std::max({std::abs(b.min.x), std::abs(b.min.y), std::abs(b.max.x), std::abs(b.max.y), b.width(),
+                   b.height()});
+}
+
+// ---- branch and bound over the rectangle's x-range ----------------------
+
+struct Candidate {
+  Box box;
+  double area = 0.0;
+};
+
+class Search {
+ public:
+  Search(const Component& component, RectangleShape shape)
+      : component_(component), shape_(shape), bbox_(component.outer.bbox()),
+        slack_(1e-12 * scale_of(bbox_)) {}
+
+  // Upper bound of the area over x0 in [a0, b0], x1 in [a1, b1].
+  double upper(double a0, double b0, double a1, double b1) const {
+    if (a0 >= b1) return 0.0;
+    const double w = std::min(b1 - a0, bbox_.width());
+    const double h = b0 < a1 ? free_interval(component_, b0, a1, slack_).length() : bbox_.height();
+    return area_of(w, h);
+  }
+
+  // A rectangle of the shape inside for x0, x1 (lower bound).
+  Candidate candidate(double x0, double x1) const {
+    if (!(x1 > x0)) return {};
+    const FreeInterval f = free_interval(component_, x0, x1, -slack_);
+    double w = x1 - x0, h = f.length();
+    if (h <= 0.0) return {};
+    if (shape_.kind == RectangleShape::Kind::aspect) {
+      if (h >= shape_.value * w) h = shape_.value * w;
+      else w = h / shape_.value;
+    }
+    const double xm = 0.5 * (x0 + x1), ym = 0.5 * (f.y0 + f.y1);
+    Candidate c;
+    c.box.min = {xm - 0.5 * w, ym - 0.5 * h};
+    c.box.max = {xm + 0.5 * w, ym + 0.5 * h};
+    c.area = w * h;
+    return c;
+  }
+
+  double area_of(double w, double h) const {
+    if (shape_.kind == RectangleShape::Kind::aspect) {
+      const double k = shape_.value;
+      const double side = std::min(w, h / k);
+      return k * side * side;
+    }
+    return w * h;
+  }
+
+  const Box& bbox() const { return bbox_; }
+
+ private:
+  const Component& component_;
+  RectangleShape shape_;
+  Box bbox_;
+  double slack_;
+};
+
+struct Cell {
+  double a0, b0, a1, b1;  // x0 in [a0, b0], x1 in [a1, b1]
+  double upper;
+};
+
+InscribedRectangle search_free_or_aspect(const Search& s, double precision, std::size_t max_evaluations) {
+  const Box& bb = s.bbox();
+  auto lower_ub = [](const Cell& a, const Cell& b) { return a.upper < b.upper; };
+  std::priority_queue<Cell, std::vector<Cell>, decltype(lower_ub)> queue(lower_ub);
+  InscribedRectangle out;
+  Candidate best;
+  auto consider = [&](const Cell& c) {
+    ++out.evaluations;
+    const Candidate k = s.candidate(0.5 * (c.a0 + c.b0), 0.5 * (c.a1 + c.b1));
+    if (k.area > best.area) best = k;
+  };
+  Cell root{bb.min.x, bb.max.x, bb.min.x, bb.max.x, 0.0};
+  root.upper = s.upper(root.a0, root.b0, root.a1, root.b1);
+  consider(root);
+  queue.push(root);
+  while (!queue.empty()) {
+    const Cell top = queue.top();
+    if (top.upper <= best.area || (top.upper - best.area) <= precision * top.upper) break;
+    if (out.evaluations >= max_evaluations) break;
+    queue.pop();
+    Cell halves[2] = {top, top};
+    if (top.b0 - top.a0 >= top.b1 - top.a1) {
+      const double m = 0.5 * (top.a0 + top.b0);
+      halves[0].b0 = m;
+      halves[1].a0 = m;
+    } else {
+      const double m = 0.5 * (top.a1 + top.b1);
+      halves[0].b1 = m;
+      halves[1].a1 = m;
+    }
+    for (Cell& h : halves) {
+      h.upper = s.upper(h.a0, h.b0, h.a1, h.b1);
+      if (h.upper <= best.area) continue;
+      consider(h);
+      queue.push(h);
+    }
+  }
+  out.box = best.box;
+  out.area = best.area;
+  out.area_upper = queue.empty() ? best.area : std::max(best.area, queue.top().upper);
+  return out;
+}
+
+InscribedRectangle search_width(const Component& component, double w, double precision,
+                                std::size_t max_evaluations) {
+  const Box bb = component.outer.bbox();
+  InscribedRectangle out;
+  if (w > bb.width()) return out;  // nothing of that width fits
+  const double slack = 1e-12 * scale_of(bb);
+  struct Interval {
+    double a, b, upper;
+  };
+  auto upper = [&](double a, double b) {
+    const double h = b < a + w ? free_interval(component, b, a + w, slack).length() : bb.height();
+    return w * h;
+  };
+  auto lower_ub = [](const Interval& p, const Interval& q) { return p.upper < q.upper; };
+  std::priority_queue<Interval, std::vector<Interval>, decltype(lower_ub)> queue(lower_ub);
+  Candidate best;
+  auto consider = [&](const Interval& i) {
+    ++out.evaluations;
+    const double x0 = 0.5 * (i.a + i.b);
+    const FreeInterval f = free_interval(component, x0, x0 + w, -slack);
+    if (w * f.length() > best.area) {
+      best.area = w * f.length();
+      best.box.min = {x0, f.y0};
+      best.box.max = {x0 + w, f.y1};
+    }
+  };
+  Interval root{bb.min.x, bb.max.x - w, 0.0};
+  root.upper = upper(root.a, root.b);
+  consider(root);
+  queue.push(root);
+  while (!queue.empty()) {
+    const Interval top = queue.top();
+    if (top.upper <= best.area || (top.upper - best.area) <= precision * top.upper) break;
+    if (out.evaluations >= max_evaluations) break;
+    queue.pop();
+    const double m = 0.5 * (top.a + top.b);
+    for (Interval h : {Interval{top.a, m, 0.0}, Interval{m, top.b, 0.0}}) {
+      h.upper = upper(h.a, h.b);
+      if (h.upper <= best.area) continue;
+      consider(h);
+      queue.push(h);
+    }
+  }
+  out.box = best.box;
+  out.area = best.area;
+  out.area_upper = queue.empty() ? best.area : std::max(best.area, queue.top().upper);
+  return out;
+}
+
+bool box_inside(const Region& region, const Box& box) {
+  return rectangle(box).subtract(region).empty();
+}
+
+// ---- distances between boundaries ------------------------------------------
+
+Curve segment_curve(Point a, Point b) {
+  Curve c;
+  c.kind = Curve::Kind::segment;
+  c.source = a;
+  c.target = b;
+  return c;
+}
+
+double orient(Point a, Point b, Point c) { return cross(b - a, c - a); }
+
+bool segments_cross(Point p, Point q, Point r, Point s) {
+  const double d1 = orient(p, q, r), d2 = orient(p, q, s), d3 = orient(r, s, p), d4 = orient(r, s, q);
+  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
+}
+
+// Distance between the segment pq and a boundary curve.
+double segment_distance(Point p, Point q, const Curve& c) {
+  const Curve seg = segment_curve(p, q);
+  double d = std::min({distance(c, p), distance(c, q), distance(seg, c.source), distance(seg, c.target)});
+  if (c.kind == Curve::Kind::segment) {
+    if (segments_cross(p, q, c.source, c.target)) return 0.0;
+    return d;
+  }
+  // The common normal through the centre, and the crossings with the circle.
+  const Point dir = q - p;
+  const double len2 = dot(dir, dir);
+  if (len2 > 0.0) {
+    const double t = std::clamp(dot(c.center - p, dir) / len2, 0.0, 1.0);
+    d = std::min(d, distance(c, p + t * dir));
+    const Point f = p - c.center;
+    const double B = dot(f, dir), C = dot(f, f) - c.radius * c.radius;
+    const double disc = B * B - len2 * C;
+    if (disc >= 0.0) {
+      for (double sgn : {-1.0, 1.0}) {
+        const double u = (-B + sgn * std::sqrt(disc)) / len2;
+        if (u >= 0.0 && u <= 1.0) d = std::min(d, distance(c, p + u * dir));
+      }
+    }
+  }
+  return d;
+}
+
+// Largest distance from a point of the polygon to the region (0 inside it),
+// by branch and bound on the 1-Lipschitz distance; returns {value, error}.
+std::pair<double, double> farthest_outside(const Region& region, const std::vector<Loop>& loops,
+                                           const std::vector<Point>& polygon, const Box& pb, double tolerance) {
+  const auto dist_to_region = [&](Point x) {
+    if (region.contains(x)) return 0.0;
+    double d = std::numeric_limits<double>::infinity();
+    for (const Loop& l : loops) {
+      for (const Curve& c : l.curves) d = std::min(d, distance(c, x));
+    }
+    return d;
+  };
+  const auto in_polygon = [&](Point x) {
+    bool in = false;
+    for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+      const Point a = polygon[i], b = polygon[j];
+      if ((a.y > x.y) != (b.y > x.y) && x.x < a.x + (x.y - a.y) * (b.x - a.x) / (b.y - a.y)) in = !in;
+    }
+    return in;
+  };
+  const auto polygon_distance = [&](Point x) {
+    if (in_polygon(x)) return 0.0;
+    double d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+      d = std::min(d, distance(segment_curve(polygon[j], polygon[i]), x));
+    }
+    return d;
+  };
+  struct Square {
+    Point c;
+    double h, bound;
+  };
+  double best = 0.0;
+  for (const Point& v : polygon) best = std::max(best, dist_to_region(v));
+  auto lower = [](const Square& a, const Square& b) { return a.bound < b.bound; };
+  std::priority_queue<Square, std::vector<Square>, decltype(lower)> queue(lower);
+  auto push = [&](Point c, double h) {
+    const double reach = h * std::numbers::sqrt2;
+    if (polygon_distance(c) > reach) return;  // the cell misses the polygon
+    if (in_polygon(c)) best = std::max(best, dist_to_region(c));
+    queue.push({c, h, dist_to_region(c) + reach});
+  };
+  const double size = std::max(pb.width(), pb.height());
+  push({0.5 * (pb.min.x + pb.max.x), 0.5 * (pb.min.y + pb.max.y)}, 0.5 * size);
+  std::size_t evaluations = 0;
+  while (!queue.empty() && queue.top().bound - best > tolerance && ++evaluations < 2'000'000) {
+    const Square cell = queue.top();
+    queue.pop();
+    const double h = 0.5 * cell.h;
+    for (int i = -1; i <= 1; i += 2) {
+      for (int j = -1; j <= 1; j += 2) push({cell.c.x + i * h, cell.c.y + j * h}, h);
+    }
+  }
+  const double upper = queue.empty() ? best : std::max(best, queue.top().bound);
+  return {best, upper - best};
+}
+
+}  // namespace
+
+FreeInterval free_interval(const Component& component, double x0, double x1, double slack) {
+  const double a = x0 + slack, b = x1 - slack;
+  const Box bb = component.outer.bbox();
+  if (a > b) return {bb.min.y, bb.max.y};  // thinner than the rounding: no constraint in x
+  thread_local std::vector<YRange> blocked;  // reused: this runs ~1e5 times per search
+  blocked.clear();
+  for_each_curve(component, [&](const Curve& c) { clip_curve(c, a, b, blocked); });
+  for (YRange& r : blocked) {
+    // Shorter by the slack at both ends, but never gone: even a point (a
+    // horizontal edge) separates the free gaps above and below it.
+    if (r.hi - r.lo > 2 * slack) {
+      r.lo += slack;
+      r.hi -= slack;
+    } else {
+      r.lo = r.hi = 0.5 * (r.lo + r.hi);
+    }
+  }
+  std::sort(blocked.begin(), blocked.end(), [](const YRange& p, const YRange& q) { return p.lo < q.lo; });
+  FreeInterval best;
+  double reach = -std::numeric_limits<double>::infinity();
+  const double xm = 0.5 * (x0 + x1);
+  for (const YRange& r : blocked) {
+    // The open gap (reach, r.lo) meets no boundary: the strip over it lies
+    // wholly inside or wholly outside the component.
+    if (r.lo > reach && std::isfinite(reach) && r.lo - reach > best.length() &&
+        inside(component, {xm, 0.5 * (reach + r.lo)})) {
+      best = {reach, r.lo};
+    }
+    reach = std::max(reach, r.hi);
+  }
+  return best;
+}
+
+InscribedRectangle largest_inscribed_rectangle(const Component& component, double precision, RectangleShape shape,
+                                               const Region* region, std::size_t max_evaluations) {
+  if (!(precision > 0.0) || !std::isfinite(precision)) {
+    throw std::invalid_argument("inscribed rectangle: precision must be positive");
+  }
+  if (shape.kind != RectangleShape::Kind::free && !(shape.value > 0.0 && std::isfinite(shape.value))) {
+    throw std::invalid_argument(shape.kind == RectangleShape::Kind::aspect
+                                    ? "inscribed rectangle: aspect ratio must be positive"
+                                    : "inscribed rectangle: width must be positive");
+  }
+  if (component.outer.curves.empty()) return {};
+  InscribedRectangle out = shape.kind == RectangleShape::Kind::width
+                               ? search_width(component, shape.value, precision, max_evaluations)
+                               : search_free_or_aspect(Search(component, shape), precision, max_evaluations);
+  if (region == nullptr || out.box.empty() || out.area <= 0.0) return out;
+  // Check the rectangle against the exact region; shrink it about its centre
+  // by growing relative amounts if rounding put a corner outside.
+  const Point c{0.5 * (out.box.min.x + out.box.max.x), 0.5 * (out.box.min.y + out.box.max.y)};
+  for (double shrink = 0.0; shrink <= 1e-6; shrink = shrink == 0.0 ? 1e-13 : shrink * 10.0) {
+    Box b;
+    const double hw = 0.5 * out.box.width() * (1.0 - shrink), hh = 0.5 * out.box.height() * (1.0 - shrink);
+    b.min = {c.x - hw, c.y - hh};
+    b.max = {c.x + hw, c.y + hh};
+    if (box_inside(*region, b)) {
+      out.box = b;
+      out.area = b.width() * b.height();
+      out.verified = true;
+      return out;
+    }
+  }
+  return out;
+}
+
+TaskFit fit(const Region& region, const std::vector<Point>& polygon, double precision) {
+  if (polygon.size() < 3) throw std::invalid_argument("task polygon: needs at least 3 vertices");
+  if (!(precision > 0.0) || !std::isfinite(precision)) {
+    throw std::invalid_argument("task polygon: precision must be positive");
+  }
+  const Region task = geometry::polygon(polygon);
+  const Region outside = task.subtract(region);
+  TaskFit f;
+  f.inside = outside.empty();
+  f.area_outside = outside.area();
+  const std::vector<Loop> loops = region.loops();
+  Box pb;
+  for (const Point& p : polygon) pb.expand(p);
+  if (f.inside) {
+    double d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+      for (const Loop& l : loops) {
+        for (const Curve& c : l.curves) d = std::min(d, segment_distance(polygon[j], polygon[i], c));
+      }
+    }
+    f.margin = d;
+    f.margin_error = 1e-12 * scale_of(pb);
+    return f;
+  }
+  const auto [far, err] = farthest_outside(region, loops, polygon, pb, precision * scale_of(pb));
+  f.margin = -far;
+  f.margin_error = err;
+  return f;
+}
+
+}  // namespace pkmws::geometry
