@@ -2,8 +2,9 @@
 
 Every bundled dataset validates against its kind's schema and loads. The
 schemas are not vacuous: mutations of the datasets that the loader rejects
-for an unknown field, a missing required field, a wrong type or a negative
-length are rejected by the schema too; and a mutation the schema rejects is
+for an unknown field, a misspelt key (which the loader names, not the field it
+misses), a missing required field, a wrong type or a negative length are
+rejected by the schema too; and a mutation the schema rejects is
 rejected by the loader (the schema is never stricter than pkmws)."""
 import copy
 import json
@@ -89,6 +90,14 @@ def key_paths(node, prefix=()):
             yield from key_paths(v, prefix + (i,))
 
 
+def field_path(path):
+    """pkmws's spelling of a path: legs[1].rod_length."""
+    out = ""
+    for p in path:
+        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else p)
+    return out
+
+
 def get(doc, path):
     for p in path:
         doc = doc[p]
@@ -148,6 +157,11 @@ def mutations(doc):
             d = copy.deepcopy(doc)
             del get(d, path[:-1])[path[-1]]
             yield "missing" if is_required(SCHEMAS[doc["mechanism"]], path) else "optional", where, d
+            if path != ("mechanism",):
+                d = copy.deepcopy(doc)
+                parent = get(d, path[:-1])
+                parent[path[-1] + "x"] = parent.pop(path[-1])
+                yield "misspelt", field_path(path[:-1] + (path[-1] + "x",)), d
         if not (len(path) > 1 and path[0] == "source"):
             d = copy.deepcopy(doc)
             get(d, path[:-1])[path[-1]] = other_type(value)
@@ -190,12 +204,14 @@ def test_mutations_agree(dataset):
             counts[category] = counts.get(category, 0) + 1
             by_schema = schema_accepts(mutated)
             by_pkmws, message = pkmws_verdict(mutated, tmp)
-            if category in ("unknown", "missing", "type", "negative"):
+            if category in ("unknown", "misspelt", "missing", "type", "negative"):
                 if by_pkmws or by_schema:
                     problems.append(f"{category} {where}: pkmws {'accepts' if by_pkmws else 'rejects'}, "
                                     f"schema {'accepts' if by_schema else 'rejects'} ({message})")
                 if category == "unknown" and "unknown field (expected one of: " not in message:
                     problems.append(f"{where}: message does not list the valid fields: {message}")
+                if category == "misspelt" and f": {where}: unknown field (expected one of: " not in message:
+                    problems.append(f"{where}: the misspelt key is not what the message names: {message}")
             else:  # an optional field removed: the schema must not be stricter than pkmws
                 if by_pkmws and not by_schema:
                     problems.append(f"optional {where}: pkmws accepts, the schema rejects")
