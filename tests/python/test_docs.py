@@ -160,10 +160,14 @@ def test_references_have_every_cited_key_as_a_heading():
     assert cited <= set(KEYS), cited - set(KEYS)
 
 
-def format_examples():
-    text = (SOURCE_DIR / "docs" / "format.md").read_text(encoding="utf-8")
-    blocks = re.findall(r"```json\n(.*?)```", text, flags=re.S)
-    return [json.loads(b) for b in blocks if '"mechanism"' in b]
+def format_examples(*files):
+    """The mechanism files shown in ```json blocks (docs/format.md by default)."""
+    out = []
+    for f in files or ("docs/format.md",):
+        text = (SOURCE_DIR / f).read_text(encoding="utf-8")
+        blocks = re.findall(r"```json\n(.*?)```", text, flags=re.S)
+        out += [json.loads(b) for b in blocks if '"mechanism"' in b]
+    return out
 
 
 def test_format_md_has_an_example_of_every_kind():
@@ -173,7 +177,7 @@ def test_format_md_has_an_example_of_every_kind():
     assert any("criteria" in d for d in format_examples())
 
 
-@pytest.mark.parametrize("example", format_examples(), ids=lambda d: d["mechanism"] + ": " + d["name"][:30])
+@pytest.mark.parametrize("example", format_examples("docs/format.md", "README.md"), ids=lambda d: d["mechanism"] + ": " + d["name"][:30])
 def test_format_examples_load_and_match_their_schema(example):
     schema = json.loads((SOURCE_DIR / "docs" / "schema" / f"{example['mechanism']}.schema.json").read_text())
     jsonschema.Draft7Validator(schema).validate(example)
