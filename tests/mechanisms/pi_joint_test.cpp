@@ -40,7 +40,7 @@ std::size_t count(const std::string& text, const std::string& what) {
 
 }  // namespace
 
-TEST(PiJointKinematics, PrototypeReproducesTheSeedsDRange) {
+TEST(PiJointKinematics, PrototypeReproducesThePapersDRange) {
   const PiJoint& m = prototype();
   EXPECT_EQ(m.dof(), 1);
   const PiJointKinematics& k = m.kinematics();
@@ -185,7 +185,7 @@ TEST(PiJointKinematics, LoneJointHasNoPlanarWorkspace) {
   EXPECT_FALSE(prototype().reachable({0, 0, -61 * deg}));
 }
 
-TEST(PiJointFigures, SeriesFollowTheSeedsFormulas) {
+TEST(PiJointFigures, SeriesFollowThePapersFormulas) {
   const auto figures = mechanisms::pi_joint_figures(prototype(), 121);
   std::vector<int> numbers;
   for (const auto& f : figures) numbers.push_back(f.number);
