@@ -6,12 +6,12 @@ import json
 import math
 import os
 
-SEED_002 = ("Milutinović D., Kokotović B., Slavković N., Živanović S.: Mehanizam aktivnog "
+MILUTINOVIC = ("Milutinović D., Kokotović B., Slavković N., Živanović S.: Mehanizam aktivnog "
             "P-zgloba kao ekvivalenta kombinacije obrtnog zgloba i segmenta konstantne dužine "
             "(technical solution, Belgrade 2014), [Milutinovic]")
-SEED_003 = ("Strutynskyi V. B., Kyrychenko A. M.: Kinematic relations of a machine tool with the "
+STRUTYNSKYI = ("Strutynskyi V. B., Kyrychenko A. M.: Kinematic relations of a machine tool with the "
             "'biglide' parallel mechanism, [Strutynskyi]")
-SEED_004 = ("Pressure angles and joint reactions in the workspace of planar parallel manipulators "
+BRIOT = ("Pressure angles and joint reactions in the workspace of planar parallel manipulators "
             "(five-bar DexTAR and 3-RPR PAMINSA), [Briot]")
 
 # DexTAR ([Briot]): l_AB = l_DE = l_BC = l_CD = 0.23 m, a = 0.1375 m.
@@ -55,7 +55,7 @@ def files():
                 "proximal": [DEXTAR_L, DEXTAR_L],
                 "distal": [DEXTAR_L, DEXTAR_L],
                 "working_mode": [s1, s2],
-                "source": {"paper": SEED_004,
+                "source": {"paper": BRIOT,
                            "figure": "Fig. 7 (the five-bar), Fig. 9 (reactions for f = 100 N; outer "
                                      "contour = type-1 singularity), Fig. 10 (workspace vs alpha_max)",
                            "note": "The reachable workspace is the same in every working mode (the "
@@ -81,12 +81,12 @@ def files():
             {"k": 0.4, "stroke": [117.0, 232.0], "base_angle_deg": 90.0, "sense": 1},
             {"k": 0.4, "stroke": [117.0, 232.0], "base_angle_deg": 90.0, "sense": -1},
         ],
-        "source": {"paper": SEED_002,
+        "source": {"paper": MILUTINOVIC,
                    "figure": "Fig. 5 (planar 5R mechanisms with active Pi-joints); prototype of §4.2",
                    "note": "Dimensions other than the Pi-joint's are our choice. Leg 2 is the mirror "
                            "image of leg 1 (sense -1), so the workspace is symmetric about x = 0."},
     }
-    biglide_source = {"paper": SEED_003,
+    biglide_source = {"paper": STRUTYNSKYI,
                       "figure": "Fig. 3 (simplified scheme), Fig. 8a (velocity ratio)",
                       "note": "The paper gives no dimensions: B = 500 mm and l1 = l2 = 940 mm are "
                               "chosen so that V/V_y = 1.5 and 2 fall 782 mm and 841 mm from guide 1 "
@@ -112,7 +112,7 @@ def files():
         "rods": [BIGLIDE_L, l2],
         "stroke": [BIGLIDE_STROKE, BIGLIDE_STROKE],
         "tool": {"l3": BIGLIDE_L3, "l4": BIGLIDE_L4},
-        "source": {"paper": SEED_003,
+        "source": {"paper": STRUTYNSKYI,
                    "figure": "Fig. 4 (real scheme), Fig. 5 (zero position), Fig. 8b (velocity ratio)",
                    "note": "l1 = 940, l3 = 900, l4 = 150 mm chosen; l2 = %.6f mm from eq. 9 in the form "
                            "consistent with eq. 3-4 (the printed eq. 9 has the sign of asin(B/l3) "
@@ -129,7 +129,7 @@ def files():
         "k": 0.4,
         "theta_limits_deg": [-60.0, 60.0],
         "actuator": {"lead": 2.54, "resolution_per_step": 0.0127, "max_speed": 50.0, "max_force_N": 130.0},
-        "source": {"paper": SEED_002,
+        "source": {"paper": MILUTINOVIC,
                    "figure": "§4.2, Table 1, Fig. 15-17 (resolution, angular velocity, torque)",
                    "note": "d(+-60 deg) = 231.40 / 116.20 mm; the paper prints d_max = 232, d_min = 117 "
                            "(rounded up) and d_max - d_min = 115 mm."},

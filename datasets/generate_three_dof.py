@@ -7,9 +7,9 @@ import json
 import math
 import os
 
-SEED_001 = ("Mitsi S., Bouzakis K.-D., Mansour G., Popescu I.: A method for solving the direct "
+MITSI = ("Mitsi S., Bouzakis K.-D., Mansour G., Popescu I.: A method for solving the direct "
             "kinematics of the planar parallel robots 3-RRP and 3-PRP (in Greek), [Mitsi]")
-SEED_004 = ("Briot S., Arakelian V., Glazunov V. A.: Pressure angles and joint reactions in planar "
+BRIOT = ("Briot S., Arakelian V., Glazunov V. A.: Pressure angles and joint reactions in planar "
             "parallel manipulators (in Russian), [Briot]")
 
 S3 = math.sqrt(3.0)
@@ -49,7 +49,7 @@ def three_rrp_mitsi():
         "crank_lengths": [CRANK, CRANK, CRANK],
         "orientation_deg": 20.0,
         "source": {
-            "paper": SEED_001,
+            "paper": MITSI,
             "table": "Table 1 (data), Table 2 (platform points), Fig. 4 (the two assembly modes)",
             "joints_deg": CRANK_ANGLES_DEG,
             "note": ("Table 1 lost its digits 0 and 2 in text extraction; values inferred, nothing was fitted "
@@ -83,7 +83,7 @@ def three_prp_example():
         "strokes": [[0.0, 80.0], [0.0, 80.0], [0.0, 80.0]],
         "orientation_deg": 0.0,
         "source": {
-            "paper": SEED_001,
+            "paper": MITSI,
             "note": ("The paper gives no 3-PRP example; this one reuses its base and platform with guides along "
                      "the base's medians ([Mitsi] eq. 2: A_i = O_i + s_i (cos delta_i, sin delta_i)). "
                      "Joint values s = (40, 40, 40) mm put the platform centroid on the base centroid."),
@@ -109,7 +109,7 @@ def three_rpr_paminsa():
         "orientation_deg": 0.0,
         "criteria": {"load": {"force_N": 100.0, "moment_Nm": 5.0}, "max_reaction_N": 200.0},
         "source": {
-            "paper": SEED_004,
+            "paper": BRIOT,
             "figure": "Fig. 11b (the planar model), Fig. 12 (reactions at B1 for f = 100 N, m = 5 N m, "
                       "phi = 0, 25, 50 deg), Fig. 13a (workspace for phi = 0, R_max = 200 N)",
             "note": ("Type-2 singular for fixed phi on the circle about O of radius "

@@ -1,4 +1,6 @@
 // pkmws info FILE: the parsed mechanism.
+#include <stdexcept>
+
 #include "bodies_cli.hpp"
 
 namespace pkmws::cli {
@@ -14,10 +16,16 @@ void add_info(CLI::App& app, std::vector<Command>& commands) {
     for (const auto& j : mech.model->joints()) {
       joints.push_back(Json{{"name", j.name}, {"unit", j.angle ? "deg" : mech.units}});
     }
-    const auto b = mech.model->bounds();
-    out["derived"] = Json{{"dof", mech.model->dof()},
-                          {"joints", joints},
-                          {"bounds", {{"min", {b.min.x, b.min.y}}, {"max", {b.max.x, b.max.y}}}}};
+    out["derived"] = Json{{"dof", mech.model->dof()}, {"joints", joints}};
+    try {
+      const auto b = mech.model->bounds();
+      out["derived"]["bounds"] = {{"min", {b.min.x, b.min.y}}, {"max", {b.max.x, b.max.y}}};
+    } catch (const std::runtime_error& e) {
+      // A valid file whose workspace has no bound (a 3-RPR without leg limits,
+      // a 3-PRP without strokes): say so instead of refusing the file.
+      out["derived"]["bounds"] = nullptr;
+      out["derived"]["unbounded"] = e.what();
+    }
     if (mech.bodies) {
       // docs/format.md (bodies): the pairs checked for collision (joined and allowed pairs excluded).
       const auto& m = mech.bodies->model();

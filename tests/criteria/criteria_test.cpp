@@ -42,7 +42,7 @@ mechanisms::FiveBar dextar(int s1, int s2) {
 // I_1 of leg 1's twist (the meeting point of the force lines of legs 2 and 3)
 // at O: |B_1 I_1| = d_1 = b_1 = 0.1 m, |P I_1| = 2 b_1 (γ_1 = 2), leg 1 vertical
 // so r_1 ∥ v_1 (α_1 = 0): R_1 = 2 f + |m| / b_1 = 300 N for f = 100 N, m = 10 N·m.
-TEST(CriteriaSeedReactions, ThreeHundredNewtonsOnARealPaminsaPose) {
+TEST(CriteriaPaperReactions, ThreeHundredNewtonsOnARealPaminsaPose) {
   const ThreeRpr m = paminsa(0.0);
   const Pose pose{0.0, 0.2, 0.0};
   const auto t = m.transmission(pose);
@@ -56,7 +56,7 @@ TEST(CriteriaSeedReactions, ThreeHundredNewtonsOnARealPaminsaPose) {
 
 // Second example: P at the base centre (φ = 0): I_1 = (0, 0.2), d_1 = 3 b_1,
 // γ = 2/3, α_1 = 0: R_1 = 2f/3 + |m| / (3 b_1) = 180 N for f = 240 N, m = 6 N·m.
-TEST(CriteriaSeedReactions, HundredEightyNewtonsAtTheCentre) {
+TEST(CriteriaPaperReactions, HundredEightyNewtonsAtTheCentre) {
   const ThreeRpr m = paminsa(0.0);
   const Pose pose{0.0, 0.0, 0.0};
   const auto t = m.transmission(pose);

@@ -364,7 +364,8 @@ TEST(BiglideFile, ErrorsNameTheField) {
   EXPECT_EQ(with("stroke", {{0, 1600}, {1600, 0}}), "stroke[1]: expected [min, max] with min < max");
   EXPECT_EQ(with("stroke", {0, 1600}), "stroke[0]: expected [min, max]");
   EXPECT_EQ(with("tool", {{"l3", 900}, {"l4", 10}}), "tool.l4: the triangle S1 J T needs |l1 - l3| <= l4 <= l1 + l3 (l1 = rods[0])");
-  EXPECT_EQ(with("tool", {{"l3", 900}, {"l4", 150}, {"l5", 1}}), "tool.l5: unknown field");
+  EXPECT_EQ(with("tool", {{"l3", 900}, {"l4", 150}, {"l5", 1}}), "tool.l5: unknown field (expected one of: l3, l4)");
   EXPECT_EQ(with("tool", {{"l3", 900}}), "tool.l4: missing required field");
-  EXPECT_EQ(with("table", 1), "table: unknown field");
+  EXPECT_EQ(with("table", 1), "table: unknown field (expected one of: name, mechanism, units, description, source, criteria, "
+                                "half_width, rods, stroke, tool, bodies)");
 }

@@ -897,7 +897,7 @@ TEST(MomaLoader, ReadsEveryField) {
 
 TEST(MomaLoader, EachBadFieldNamesItsPath) {
   const std::pair<std::string, std::string> cases[] = {
-      {edit("\"legs\": [", "\"legz\": ["), "legs: missing"},
+      {edit("\"legs\": [", "\"legz\": ["), "legz: unknown field (expected one of: name, mechanism, units, description, source, criteria, legs, bodies)"},
       {edit("\"rod_length\": 250", "\"rod_length\": -250", true), "legs[1].rod_length: must be positive"},
       {edit("\"rod_length\": 250", "\"rod_length\": 0"), "legs[0].rod_length: must be positive"},
       {edit("\"rod_length\": 250", "\"rod_length\": 1e300"), "legs[0].rod_length"},
@@ -905,7 +905,7 @@ TEST(MomaLoader, EachBadFieldNamesItsPath) {
       {edit("\"branch\": -1", "\"branch\": 2", true), "legs[1].branch"},
       {edit("\"branch\": -1", "\"branch\": 0"), "legs[0].branch"},
       {edit("\"branch\": -1", "\"branch\": -1.0"), "legs[0].branch"},
-      {edit("\"guide_angle_deg\": 270", "\"guide_angle_deg\": 270, \"foo\": 1"), "legs[0].foo: unknown field"},
+      {edit("\"guide_angle_deg\": 270", "\"guide_angle_deg\": 270, \"foo\": 1"), "legs[0].foo: unknown field (expected one of: reference, guide_angle_deg, stroke, rod_length, branch)"},
       {edit("\"guide_angle_deg\": 270", "\"guide_angle_deg\": \"down\""), "legs[0].guide_angle_deg"},
       {edit("\"stroke\": [0, 200]", "\"stroke\": [200, 0]"), "legs[0].stroke"},
       {edit("\"stroke\": [0, 200]", "\"stroke\": [100, 100]", true), "legs[1].stroke"},

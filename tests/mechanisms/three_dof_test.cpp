@@ -544,7 +544,7 @@ TEST(ThreeRpr, AnnulusWorkspaceMatchesAGridCount) {
 
 namespace {
 
-TEST(ThreeRpr, TracedSingularityOfPaminsaIsTheSeedsCircle) {
+TEST(ThreeRpr, TracedSingularityOfPaminsaIsThePapersCircle) {
   // [Briot]: for fixed phi the type-2 singularity of the planar PAMINSA
   // (actuated base revolutes) is the circle about O of radius
   // sqrt(R_b^2 + R_p^2 - 2 R_b R_p cos phi). The drawing traces det A = 0.

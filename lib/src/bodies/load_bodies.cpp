@@ -88,9 +88,15 @@ std::shared_ptr<const bodies::BodyRig> load_bodies(JsonReader& document,
     document.fail("bodies", "bodies are supported for moma and five_bar mechanisms only");
   }
   auto r = document.object("bodies");
+  if (kind == "moma") {
+    r.declare_fields({"platform_joint", "rods", "slider_blocks", "housings", "obstacles", "allowed_contacts"});
+  } else {
+    r.declare_fields({"platform_joint", "proximal", "distal", "obstacles", "allowed_contacts"});
+  }
   bodies::BodyModel model;
   if (r.has("platform_joint")) {
     auto p = r.object("platform_joint");
+    p.declare_fields({"radius", "min_link_angle_deg"});
     Part part = leg_part("platform", PartKind::platform_joint, -1);
     part.radius = length(p, "radius", false);
     if (p.has("min_link_angle_deg")) {
@@ -106,6 +112,7 @@ std::shared_ptr<const bodies::BodyRig> load_bodies(JsonReader& document,
     auto items = pair_of(r, key);
     for (int i = 0; i < 2; ++i) {
       auto& it = items[static_cast<std::size_t>(i)];
+      it.declare_fields({"radius"});
       Part part = leg_part(stem + std::to_string(i + 1), PartKind::link, i);
       part.proximal = proximal;
       part.radius = length(it, "radius", false);
@@ -119,6 +126,7 @@ std::shared_ptr<const bodies::BodyRig> load_bodies(JsonReader& document,
       auto items = pair_of(r, "slider_blocks");
       for (int i = 0; i < 2; ++i) {
         auto& it = items[static_cast<std::size_t>(i)];
+        it.declare_fields({"length", "width"});
         Part part = leg_part("slider" + std::to_string(i + 1), PartKind::slider_block, i);
         part.length = length(it, "length", false);
         part.width = length(it, "width", false);
@@ -130,6 +138,7 @@ std::shared_ptr<const bodies::BodyRig> load_bodies(JsonReader& document,
       auto items = pair_of(r, "housings");
       for (int i = 0; i < 2; ++i) {
         auto& it = items[static_cast<std::size_t>(i)];
+        it.declare_fields({"extent", "width"});
         Part part = leg_part("housing" + std::to_string(i + 1), PartKind::housing, i);
         const auto e = it.interval("extent");
         if (!(std::abs(e[0]) <= max_length && std::abs(e[1]) <= max_length)) {
@@ -151,6 +160,7 @@ std::shared_ptr<const bodies::BodyRig> load_bodies(JsonReader& document,
     if (!v.is_array()) r.fail("obstacles", "expected an array of {name, polygon}");
     auto items = r.objects("obstacles", v.size());
     for (auto& it : items) {
+      it.declare_fields({"name", "polygon"});
       Part part;
       part.kind = PartKind::obstacle;
       part.name = it.string("name");

@@ -43,7 +43,7 @@ Region make_region(std::vector<PolygonWithHoles> pieces);
 Region region_from_loop(const std::vector<Curve>& loop);
 
 /// Exact double value of a one-root number: forces the exact value first
-/// (to_double on a lazy number only guarantees ~1e-5, CGAL-NOTES).
+/// (to_double on a lazy number only guarantees ~1e-5, docs/theory/regions.md).
 double to_double_exact(const CoordNT& value);
 double to_double_exact(const FT& value);
 

@@ -42,7 +42,7 @@ Point Curve::at(double t) const {
 
 double Loop::signed_area() const {
   // Green's theorem, relative to a local origin o to avoid cancellation:
-  // segment  1/2 (p x q), arc 1/2 [c x (q - p) + r^2 dtheta] (CGAL-NOTES).
+  // segment  1/2 (p x q), arc 1/2 [c x (q - p) + r^2 dtheta] (docs/theory/regions.md).
   if (curves.empty()) return 0.0;
   const Point o = curves.front().source;
   double twice = 0.0;
@@ -94,7 +94,7 @@ std::vector<Point> Loop::polyline(double tolerance) const {
     out.push_back(c.source);
     if (c.kind != Curve::Kind::arc) continue;
     // A chord of angle h deviates r (1 - cos(h/2)) from its arc: n pieces
-    // with h = sweep / n keep the deviation <= tolerance (CGAL-NOTES).
+    // with h = sweep / n keep the deviation <= tolerance (docs/theory/regions.md).
     const double ratio = std::min(tolerance / c.radius, 1.0);
     const double max_step = ratio > 0.0 ? 2.0 * std::acos(1.0 - ratio) : 0.0;
     const double s = std::abs(c.sweep());

@@ -1,5 +1,6 @@
 #include "io/json_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace pkmws::io::detail {
@@ -154,9 +155,22 @@ std::optional<std::string> JsonReader::optional_string(const std::string& key) {
   return string(key);
 }
 
+void JsonReader::unknown_field(const std::string& key) const {
+  std::string list;
+  for (const auto& f : declared_) list += (list.empty() ? "" : ", ") + f;
+  throw InputError(field(key) + ": unknown field" + (list.empty() ? "" : " (expected one of: " + list + ")"));
+}
+
+void JsonReader::declare_fields(std::vector<std::string> fields) {
+  declared_ = std::move(fields);
+  for (auto it = object_.begin(); it != object_.end(); ++it) {
+    if (std::find(declared_.begin(), declared_.end(), it.key()) == declared_.end()) unknown_field(it.key());
+  }
+}
+
 void JsonReader::finish() const {
   for (auto it = object_.begin(); it != object_.end(); ++it) {
-    if (!read_.count(it.key())) throw InputError(field(it.key()) + ": unknown field");
+    if (!read_.count(it.key())) unknown_field(it.key());
   }
 }
 

@@ -1,6 +1,8 @@
 // Strict reading of one JSON object with the field's path in every error
-// message; fields that were never read are reported as unknown by finish().
-// Private to the library.
+// message. declare_fields() names every field the object may have and reports
+// a key outside that list at once (before any "missing required field", so a
+// misspelt key is named, with the valid ones); finish() reports fields that
+// were never read. Private to the library.
 #pragma once
 
 #include <array>
@@ -51,6 +53,12 @@ class JsonReader {
   std::optional<double> optional_positive(const std::string& key);
   std::optional<std::string> optional_string(const std::string& key);
 
+  /// Declares the fields this object may have (in the order messages list
+  /// them) and throws InputError naming the first key that is not one of them:
+  /// "legs[1].rod_lenght: unknown field (expected one of: reference, ...)".
+  /// Call it before reading any field.
+  void declare_fields(std::vector<std::string> fields);
+
   /// Throws InputError naming the first field that was never read.
   void finish() const;
 
@@ -61,10 +69,12 @@ class JsonReader {
 
  private:
   const nlohmann::json& get(const std::string& key);
+  [[noreturn]] void unknown_field(const std::string& key) const;
 
   const nlohmann::json& object_;
   std::string path_;
   std::set<std::string> read_;
+  std::vector<std::string> declared_;
 };
 
 }  // namespace pkmws::io::detail

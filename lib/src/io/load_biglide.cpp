@@ -35,6 +35,7 @@ MechanismPtr load_biglide(JsonReader& document) {
   }
   if (document.has("tool")) {
     auto t = document.object("tool");
+    t.declare_fields({"l3", "l4"});
     mechanisms::BiglideTool tool;
     tool.l3 = t.positive("l3");
     tool.l4 = t.non_negative("l4");

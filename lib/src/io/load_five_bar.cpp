@@ -62,6 +62,7 @@ MechanismPtr load_five_bar(JsonReader& document) {
     auto readers = document.objects("pi_joints", 2);
     for (std::size_t i = 0; i < 2; ++i) {
       JsonReader& r = readers[i];
+      r.declare_fields({"k", "stroke", "base_angle_deg", "sense"});
       mechanisms::FiveBarPiDrive p;
       p.k = r.positive("k");
       const auto stroke = r.interval("stroke");

@@ -27,6 +27,7 @@ MechanismPtr load_moma(JsonReader& document) {
   auto readers = document.objects("legs", 2);
   for (std::size_t i = 0; i < 2; ++i) {
     JsonReader& r = readers[i];
+    r.declare_fields({"reference", "guide_angle_deg", "stroke", "rod_length", "branch"});
     mechanisms::MomaLeg& leg = legs[i];
     leg.reference = r.point("reference");
     check_magnitude(r, "reference", leg.reference.x);

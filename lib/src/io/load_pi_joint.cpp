@@ -35,6 +35,7 @@ MechanismPtr load_pi_joint(JsonReader& document) {
   }
   if (document.has("actuator")) {
     auto r = document.object("actuator");
+    r.declare_fields({"lead", "resolution_per_step", "max_speed", "max_force_N", "efficiency"});
     mechanisms::PiJointActuator a;
     a.lead = r.positive("lead");
     a.resolution_per_step = r.positive("resolution_per_step");

@@ -1,5 +1,6 @@
 #include "pkmws/io/mechanism_file.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -14,23 +15,50 @@ namespace {
 
 using Loader = std::function<detail::MechanismPtr(detail::JsonReader&)>;
 
-const std::map<std::string, Loader>& loaders() {
-  static const std::map<std::string, Loader> table = {
-      {"moma", detail::load_moma},
-      {"five_bar", detail::load_five_bar},
-      {"biglide", detail::load_biglide},
-      {"pi_joint", detail::load_pi_joint},
-      {"three_rrp", detail::load_three_rrp},
-      {"three_prp", detail::load_three_prp},
-      {"three_rpr", detail::load_three_rpr},
+struct Kind {
+  Loader load;
+  std::vector<std::string> fields;  // the kind's own top-level fields (docs/format.md), as the loader reads them
+};
+
+const std::map<std::string, Kind>& kinds() {
+  static const std::map<std::string, Kind> table = {
+      {"moma", {detail::load_moma, {"legs"}}},
+      {"five_bar", {detail::load_five_bar, {"base", "proximal", "distal", "working_mode", "actuator_limits_deg", "pi_joints"}}},
+      {"biglide", {detail::load_biglide, {"half_width", "rods", "stroke", "tool"}}},
+      {"pi_joint", {detail::load_pi_joint, {"crank_length", "k", "theta_limits_deg", "stroke", "actuator"}}},
+      {"three_rrp", {detail::load_three_rrp, {"base", "platform", "crank_lengths", "crank_limits_deg", "orientation_deg"}}},
+      {"three_prp", {detail::load_three_prp, {"base", "platform", "directions_deg", "strokes", "orientation_deg"}}},
+      {"three_rpr",
+       {detail::load_three_rpr, {"base", "platform", "actuation", "orientation_deg", "leg_limits", "analysis_window"}}},
   };
   return table;
+}
+
+// The top-level fields a document may have: the common ones and its kind's, or
+// every kind's when `mechanism` does not name one (its own error comes next).
+std::vector<std::string> top_level_fields(const nlohmann::json& document) {
+  std::vector<std::string> fields = {"name", "mechanism", "units", "description", "source", "criteria"};
+  auto add = [&](const std::vector<std::string>& more) {
+    for (const auto& f : more) {
+      if (std::find(fields.begin(), fields.end(), f) == fields.end()) fields.push_back(f);
+    }
+  };
+  const auto m = document.find("mechanism");
+  const auto kind = m != document.end() && m->is_string() ? kinds().find(m->get<std::string>()) : kinds().end();
+  if (kind != kinds().end()) {
+    add(kind->second.fields);
+  } else {
+    for (const auto& [_, k] : kinds()) add(k.fields);
+  }
+  add({"bodies"});
+  return fields;
 }
 
 mechanisms::Criteria read_criteria(detail::JsonReader& doc, std::vector<int>& reaction_legs) {
   mechanisms::Criteria c;
   if (!doc.has("criteria")) return c;
   auto r = doc.object("criteria");
+  r.declare_fields({"max_pressure_angle_deg", "max_reaction_N", "load", "max_velocity_ratio", "reaction_legs"});
   if (r.has("reaction_legs")) {
     const auto& v = r.raw("reaction_legs");
     if (!v.is_array() || v.empty()) r.fail("reaction_legs", "expected a non-empty list of leg numbers (1-based)");
@@ -50,6 +78,7 @@ mechanisms::Criteria read_criteria(detail::JsonReader& doc, std::vector<int>& re
   c.max_velocity_ratio = r.optional_positive("max_velocity_ratio");
   if (r.has("load")) {
     auto l = r.object("load");
+    l.declare_fields({"force_N", "moment_Nm"});
     mechanisms::Load load;
     load.force_N = l.non_negative("force_N");
     load.moment_Nm = l.has("moment_Nm") ? l.non_negative("moment_Nm") : 0.0;
@@ -65,13 +94,14 @@ mechanisms::Criteria read_criteria(detail::JsonReader& doc, std::vector<int>& re
 
 MechanismFile parse_mechanism(const nlohmann::json& document, const std::string& origin) {
   detail::JsonReader doc(document, "");
+  doc.declare_fields(top_level_fields(document));
   MechanismFile file;
   file.path = origin;
   file.document = document;
   file.name = doc.string("name");
-  std::vector<std::string> kinds;
-  for (const auto& [k, _] : loaders()) kinds.push_back(k);
-  file.mechanism = doc.one_of("mechanism", kinds);
+  std::vector<std::string> names;
+  for (const auto& [k, _] : kinds()) names.push_back(k);
+  file.mechanism = doc.one_of("mechanism", names);
   file.units = doc.one_of("units", {"mm", "m"});
   file.description = doc.optional_string("description").value_or("");
   if (doc.has("source")) {
@@ -80,7 +110,7 @@ MechanismFile parse_mechanism(const nlohmann::json& document, const std::string&
     file.source = s;
   }
   file.criteria = read_criteria(doc, file.reaction_legs);
-  file.model = loaders().at(file.mechanism)(doc);
+  file.model = kinds().at(file.mechanism).load(doc);
   if (doc.has("bodies")) file.bodies = detail::load_bodies(doc, file.model);
   for (int leg : file.reaction_legs) {
     if (leg > file.model->dof() || file.model->dof() < 2) {
