@@ -390,7 +390,7 @@ DesignRow evaluate_design(const SweepSpec& spec, std::size_t index) {
       } else if (m == "inscribed_circle") {
         double best = 0.0;
         for (const auto& c : comps) {
-          const double precision = 1e-9 * std::max(c.bbox.width(), c.bbox.height());
+          const double precision = 1e-5 * std::max(c.bbox.width(), c.bbox.height());  // as `pkmws area`
           best = std::max(best, geometry::largest_inscribed_circle(c, precision).radius);
         }
         row.metrics[col++] = best;

@@ -20,6 +20,14 @@ struct YRange {
   double hi;
 };
 
+// An x-monotone piece of a boundary curve, p0.x <= p1.x: a segment, or a
+// part of one half circle (sigma = +1 upper, -1 lower).
+struct Piece {
+  const Curve* curve;
+  Point p0, p1;
+  double sigma;
+};
+
 // y on the half circle (sigma = +1 upper, -1 lower) above/below x; the
 // product (r - d)(r + d) keeps the relative error of the root small near the
 // circle's leftmost and rightmost points.
@@ -28,10 +36,11 @@ double circle_y(const Curve& c, double sigma, double x) {
   return c.center.y + sigma * std::sqrt(std::max(0.0, (c.radius - d) * (c.radius + d)));
 }
 
-// y-range of the part of an x-monotone piece from p0 to p1 (a segment, or a
-// half-circle piece of side sigma) with a <= x <= b.
-std::optional<YRange> clip_piece(const Curve& c, Point p0, Point p1, double sigma, double a, double b) {
-  if (p0.x > p1.x) std::swap(p0, p1);
+// y-range of the part of an x-monotone piece with a <= x <= b.
+std::optional<YRange> clip_piece(const Piece& piece, double a, double b) {
+  const Curve& c = *piece.curve;
+  const Point p0 = piece.p0, p1 = piece.p1;
+  const double sigma = piece.sigma;
   const double u = std::max(p0.x, a), v = std::min(p1.x, b);
   if (u > v) return std::nullopt;
   const auto y_at = [&](double x) {
@@ -49,21 +58,18 @@ std::optional<YRange> clip_piece(const Curve& c, Point p0, Point p1, double sigm
   return r;
 }
 
-// Appends the y-ranges of the parts of `c` with a <= x <= b.
-void clip_curve(const Curve& c, double a, double b, std::vector<YRange>& out) {
+// Splits `c` into x-monotone pieces (once per search, not per strip).
+void split_curve(const Curve& c, std::vector<Piece>& out) {
+  const auto add = [&](Point p0, Point p1, double sigma) {
+    if (p0.x > p1.x) std::swap(p0, p1);
+    out.push_back({&c, p0, p1, sigma});
+  };
   if (c.kind == Curve::Kind::segment) {
-    if (c.source.x == c.target.x) {
-      if (a <= c.source.x && c.source.x <= b) {
-        out.push_back({std::min(c.source.y, c.target.y), std::max(c.source.y, c.target.y)});
-      }
-      return;
-    }
-    if (auto r = clip_piece(c, c.source, c.target, 0.0, a, b)) out.push_back(*r);
+    add(c.source, c.target, 0.0);
     return;
   }
-  if (c.center.x + c.radius < a || c.center.x - c.radius > b) return;
-  // Counter-clockwise from `start` over `span`, split where the circle turns
-  // in x (multiples of pi): each piece lies on one half circle.
+  // Counter-clockwise from `start` over the sweep, split where the circle
+  // turns in x (multiples of pi): each piece lies on one half circle.
   const double s = c.sweep();
   const Point from = s >= 0 ? c.source : c.target;
   const Point to = s >= 0 ? c.target : c.source;
@@ -78,22 +84,27 @@ void clip_curve(const Curve& c, double a, double b, std::vector<YRange>& out) {
     const Point p1 = last ? to : Point{c.center.x + (std::fmod(m, 2.0) == 0.0 ? c.radius : -c.radius), c.center.y};
     // The piece [t0, t1] lies in [(m - 1) pi, m pi]: upper half when m - 1 is even.
     const double sigma = std::fmod(std::abs(m - 1.0), 2.0) == 0.0 ? 1.0 : -1.0;
-    if (t1 > t0) {
-      if (auto r = clip_piece(c, p0, p1, sigma, a, b)) out.push_back(*r);
-    }
+    if (t1 > t0) add(p0, p1, sigma);
     if (last) break;
     t0 = t1;
     p0 = p1;
   }
 }
 
-template <class F>
-void for_each_curve(const Component& component, F&& f) {
-  for (const Curve& c : component.outer.curves) f(c);
-  for (const Loop& h : component.holes) {
-    for (const Curve& c : h.curves) f(c);
+// A component ready for many free-height queries.
+struct Prepared {
+  const Component* component;
+  std::vector<Piece> pieces;
+  Box bbox;
+  explicit Prepared(const Component& c) : component(&c), bbox(c.outer.bbox()) {
+    for (const Curve& k : c.outer.curves) split_curve(k, pieces);
+    for (const Loop& h : c.holes) {
+      for (const Curve& k : h.curves) split_curve(k, pieces);
+    }
   }
-}
+};
+
+FreeInterval free_interval(const Prepared& prepared, double x0, double x1, double slack);
 
 double scale_of(const Box& b) {
   return std::max({std::abs(b.min.x), std::abs(b.min.y), std::abs(b.max.x), std::abs(b.max.y), b.width(),
@@ -109,22 +120,21 @@ struct Candidate {
 
 class Search {
  public:
-  Search(const Component& component, RectangleShape shape)
-      : component_(component), shape_(shape), bbox_(component.outer.bbox()),
-        slack_(1e-12 * scale_of(bbox_)) {}
+  Search(const Prepared& prepared, RectangleShape shape)
+      : prepared_(prepared), shape_(shape), bbox_(prepared.bbox), slack_(1e-12 * scale_of(bbox_)) {}
 
   // Upper bound of the area over x0 in [a0, b0], x1 in [a1, b1].
   double upper(double a0, double b0, double a1, double b1) const {
     if (a0 >= b1) return 0.0;
     const double w = std::min(b1 - a0, bbox_.width());
-    const double h = b0 < a1 ? free_interval(component_, b0, a1, slack_).length() : bbox_.height();
+    const double h = b0 < a1 ? free_interval(prepared_, b0, a1, slack_).length() : bbox_.height();
     return area_of(w, h);
   }
 
   // A rectangle of the shape inside for x0, x1 (lower bound).
   Candidate candidate(double x0, double x1) const {
     if (!(x1 > x0)) return {};
-    const FreeInterval f = free_interval(component_, x0, x1, -slack_);
+    const FreeInterval f = free_interval(prepared_, x0, x1, -slack_);
     double w = x1 - x0, h = f.length();
     if (h <= 0.0) return {};
     if (shape_.kind == RectangleShape::Kind::aspect) {
@@ -151,7 +161,7 @@ class Search {
   const Box& bbox() const { return bbox_; }
 
  private:
-  const Component& component_;
+  const Prepared& prepared_;
   RectangleShape shape_;
   Box bbox_;
   double slack_;
@@ -205,9 +215,9 @@ InscribedRectangle search_free_or_aspect(const Search& s, double precision, std:
   return out;
 }
 
-InscribedRectangle search_width(const Component& component, double w, double precision,
+InscribedRectangle search_width(const Prepared& prepared, double w, double precision,
                                 std::size_t max_evaluations) {
-  const Box bb = component.outer.bbox();
+  const Box bb = prepared.bbox;
   InscribedRectangle out;
   if (w > bb.width()) return out;  // nothing of that width fits
   const double slack = 1e-12 * scale_of(bb);
@@ -215,7 +225,7 @@ InscribedRectangle search_width(const Component& component, double w, double pre
     double a, b, upper;
   };
   auto upper = [&](double a, double b) {
-    const double h = b < a + w ? free_interval(component, b, a + w, slack).length() : bb.height();
+    const double h = b < a + w ? free_interval(prepared, b, a + w, slack).length() : bb.height();
     return w * h;
   };
   auto lower_ub = [](const Interval& p, const Interval& q) { return p.upper < q.upper; };
@@ -224,7 +234,7 @@ InscribedRectangle search_width(const Component& component, double w, double pre
   auto consider = [&](const Interval& i) {
     ++out.evaluations;
     const double x0 = 0.5 * (i.a + i.b);
-    const FreeInterval f = free_interval(component, x0, x0 + w, -slack);
+    const FreeInterval f = free_interval(prepared, x0, x0 + w, -slack);
     if (w * f.length() > best.area) {
       best.area = w * f.length();
       best.box.min = {x0, f.y0};
@@ -362,12 +372,25 @@ std::pair<double, double> farthest_outside(const Region& region, const std::vect
 }  // namespace
 
 FreeInterval free_interval(const Component& component, double x0, double x1, double slack) {
+  return free_interval(Prepared(component), x0, x1, slack);
+}
+
+namespace {
+
+FreeInterval free_interval(const Prepared& prepared, double x0, double x1, double slack) {
   const double a = x0 + slack, b = x1 - slack;
-  const Box bb = component.outer.bbox();
+  const Box& bb = prepared.bbox;
   if (a > b) return {bb.min.y, bb.max.y};  // thinner than the rounding: no constraint in x
   thread_local std::vector<YRange> blocked;  // reused: this runs ~1e5 times per search
   blocked.clear();
-  for_each_curve(component, [&](const Curve& c) { clip_curve(c, a, b, blocked); });
+  for (const Piece& p : prepared.pieces) {
+    if (p.p1.x < a || p.p0.x > b) continue;
+    if (p.p0.x == p.p1.x) {  // vertical segment
+      blocked.push_back({std::min(p.p0.y, p.p1.y), std::max(p.p0.y, p.p1.y)});
+    } else if (auto r = clip_piece(p, a, b)) {
+      blocked.push_back(*r);
+    }
+  }
   for (YRange& r : blocked) {
     // Shorter by the slack at both ends, but never gone: even a point (a
     // horizontal edge) separates the free gaps above and below it.
@@ -386,13 +409,15 @@ FreeInterval free_interval(const Component& component, double x0, double x1, dou
     // The open gap (reach, r.lo) meets no boundary: the strip over it lies
     // wholly inside or wholly outside the component.
     if (r.lo > reach && std::isfinite(reach) && r.lo - reach > best.length() &&
-        inside(component, {xm, 0.5 * (reach + r.lo)})) {
+        inside(*prepared.component, {xm, 0.5 * (reach + r.lo)})) {
       best = {reach, r.lo};
     }
     reach = std::max(reach, r.hi);
   }
   return best;
 }
+
+}  // namespace
 
 InscribedRectangle largest_inscribed_rectangle(const Component& component, double precision, RectangleShape shape,
                                                const Region* region, std::size_t max_evaluations) {
@@ -405,9 +430,10 @@ InscribedRectangle largest_inscribed_rectangle(const Component& component, doubl
                                     : "inscribed rectangle: width must be positive");
   }
   if (component.outer.curves.empty()) return {};
+  const Prepared prepared(component);
   InscribedRectangle out = shape.kind == RectangleShape::Kind::width
-                               ? search_width(component, shape.value, precision, max_evaluations)
-                               : search_free_or_aspect(Search(component, shape), precision, max_evaluations);
+                               ? search_width(prepared, shape.value, precision, max_evaluations)
+                               : search_free_or_aspect(Search(prepared, shape), precision, max_evaluations);
   if (region == nullptr || out.box.empty() || out.area <= 0.0) return out;
   // Check the rectangle against the exact region; shrink it about its centre
   // by growing relative amounts if rounding put a corner outside.
