@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "sweep_mpi.hpp"
 #include "pkmws/design/sweep.hpp"
 #include "pkmws/io/export.hpp"
 
@@ -164,8 +165,8 @@ void add_sweep(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--merge", a->merge, "Join shard CSVs into OUT (instead of SPEC)")->expected(1, -1);
   commands.push_back({sub, [a] {
     const fs::path out = a->out;
-    check_writable_dir(out);
     if (!a->merge.empty()) {
+      check_writable_dir(out);
       if (!a->spec.empty()) throw io::InputError("sweep: give SPEC or --merge, not both");
       std::string header;
       std::map<std::size_t, design::DesignRow> rows;
@@ -187,6 +188,13 @@ void add_sweep(CLI::App& app, std::vector<Command>& commands) {
       return 0;
     }
     if (a->spec.empty()) throw io::InputError("sweep: SPEC (a sweep file) or --merge is required");
+    MpiSweep mpi;
+    if (mpi.rank() != 0) {  // an MPI worker: rank 0 checks everything and writes everything
+      if (!mpi.wait_release()) return 0;
+      mpi.serve(design::load_sweep(a->spec));
+      return 0;
+    }
+    check_writable_dir(out);
     if (!a->json.empty()) check_writable_dir(a->json);
     const design::SweepSpec spec = design::load_sweep(a->spec);
     const Shard shard = a->shard.empty() ? Shard{} : parse_shard(a->shard);
@@ -220,11 +228,13 @@ void add_sweep(CLI::App& app, std::vector<Command>& commands) {
     std::vector<design::DesignRow> rows;
     {
       Progress progress(in_shard, finished.size());
-      rows = design::run_sweep(spec, todo, a->threads, [&](const design::DesignRow& r) {
+      const auto done = [&](const design::DesignRow& r) {
         log << design::csv_line(r, true) << '\n';
         log.flush();
         progress.step();
-      });
+      };
+      mpi.release(true);
+      rows = mpi.size() > 1 ? mpi.run(spec, todo, done) : design::run_sweep(spec, todo, a->threads, done);
     }
     const double seconds = elapsed_ms(start) / 1000.0;
     for (auto& r : rows) finished.emplace(r.index, std::move(r));

@@ -1,0 +1,179 @@
+#include "sweep_mpi.hpp"
+
+#include <cstdlib>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "pkmws/io/mechanism_file.hpp"
+
+#ifdef PKMWS_WITH_MPI
+#include <mpi.h>
+#endif
+
+namespace pkmws::cli {
+
+namespace {
+
+// Started by mpirun (Open MPI, or a PMI-based launcher) with more than one rank?
+int launcher_size() {
+  for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"}) {
+    if (const char* v = std::getenv(var)) return std::atoi(v);
+  }
+  return 1;
+}
+
+#ifdef PKMWS_WITH_MPI
+constexpr int kReady = 1;  // worker -> rank 0: a finished row (CSV line) or "" at start
+constexpr int kWork = 2;   // rank 0 -> worker: a design index
+constexpr int kStop = 3;   // rank 0 -> worker: no more designs
+
+std::vector<std::size_t>::size_type next_index(std::mutex& m, std::size_t& position, std::size_t end) {
+  const std::lock_guard<std::mutex> lock(m);
+  return position < end ? position++ : end;
+}
+#endif
+
+}  // namespace
+
+MpiSweep::MpiSweep() {
+  const int launched = launcher_size();
+#ifdef PKMWS_WITH_MPI
+  if (launched > 1) {
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    started_ = true;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  }
+#else
+  if (launched > 1) {
+    throw io::InputError("sweep: started by mpirun, but this pkmws was built without MPI (configure with "
+                         "-DPKMWS_MPI=ON)");
+  }
+#endif
+}
+
+MpiSweep::~MpiSweep() {
+#ifdef PKMWS_WITH_MPI
+  if (!started_) return;
+  if (rank_ == 0) {
+    if (!released_) release(false);
+    else stop_workers();
+  }
+  MPI_Finalize();
+#endif
+}
+
+void MpiSweep::release(bool ok) {
+  released_ = true;
+#ifdef PKMWS_WITH_MPI
+  if (!started_) return;
+  int go = ok ? 1 : 0;
+  MPI_Bcast(&go, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (!ok) workers_stopped_ = true;
+#else
+  (void)ok;
+#endif
+}
+
+bool MpiSweep::wait_release() {
+#ifdef PKMWS_WITH_MPI
+  int go = 0;
+  MPI_Bcast(&go, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return go == 1;
+#else
+  return false;
+#endif
+}
+
+void MpiSweep::stop_workers() {
+#ifdef PKMWS_WITH_MPI
+  if (workers_stopped_) return;
+  workers_stopped_ = true;
+  // Answer every worker's pending request with "stop" (rank 0 failed early,
+  // or no designs are left).
+  for (int w = 1; w < size_; ++w) {
+    MPI_Status status;
+    MPI_Probe(w, kReady, MPI_COMM_WORLD, &status);
+    int length = 0;
+    MPI_Get_count(&status, MPI_CHAR, &length);
+    std::string ignored(static_cast<std::size_t>(length), '\0');
+    MPI_Recv(ignored.data(), length, MPI_CHAR, w, kReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    MPI_Send(nullptr, 0, MPI_CHAR, w, kStop, MPI_COMM_WORLD);
+  }
+#endif
+}
+
+std::vector<design::DesignRow> MpiSweep::run(const design::SweepSpec& spec, const std::vector<std::size_t>& todo,
+                                             const std::function<void(const design::DesignRow&)>& done) {
+  std::vector<design::DesignRow> rows;
+#ifdef PKMWS_WITH_MPI
+  std::mutex m;
+  std::size_t position = 0;
+  const auto finished = [&](design::DesignRow row) {
+    const std::lock_guard<std::mutex> lock(m);
+    if (done) done(row);
+    rows.push_back(std::move(row));
+  };
+  // Rank 0 evaluates too, on a thread of its own; this thread talks to the workers.
+  std::thread local([&] {
+    for (;;) {
+      const std::size_t k = next_index(m, position, todo.size());
+      if (k == todo.size()) return;
+      finished(design::evaluate_design(spec, todo[k]));
+    }
+  });
+  const std::size_t parameters = spec.parameters.size(), metrics = design::metric_columns(spec).size();
+  int active = size_ - 1;
+  while (active > 0) {
+    MPI_Status status;
+    MPI_Probe(MPI_ANY_SOURCE, kReady, MPI_COMM_WORLD, &status);
+    int length = 0;
+    MPI_Get_count(&status, MPI_CHAR, &length);
+    std::string line(static_cast<std::size_t>(length), '\0');
+    MPI_Recv(line.data(), length, MPI_CHAR, status.MPI_SOURCE, kReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (!line.empty()) {
+      auto row = design::parse_csv_line(line, parameters, metrics, true);
+      if (!row) {
+        local.join();
+        throw std::runtime_error("sweep: rank " + std::to_string(status.MPI_SOURCE) + " sent a malformed row");
+      }
+      finished(std::move(*row));
+    }
+    const std::size_t k = next_index(m, position, todo.size());
+    if (k == todo.size()) {
+      MPI_Send(nullptr, 0, MPI_CHAR, status.MPI_SOURCE, kStop, MPI_COMM_WORLD);
+      --active;
+    } else {
+      const unsigned long long index = todo[k];
+      MPI_Send(&index, 1, MPI_UNSIGNED_LONG_LONG, status.MPI_SOURCE, kWork, MPI_COMM_WORLD);
+    }
+  }
+  workers_stopped_ = true;
+  local.join();
+#else
+  (void)spec;
+  (void)todo;
+  (void)done;
+#endif
+  return rows;
+}
+
+void MpiSweep::serve(const design::SweepSpec& spec) {
+#ifdef PKMWS_WITH_MPI
+  std::string line;  // the previous row, "" on the first request
+  for (;;) {
+    MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
+    MPI_Status status;
+    unsigned long long index = 0;
+    MPI_Recv(&index, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
+    if (status.MPI_TAG == kStop) return;
+    line = design::csv_line(design::evaluate_design(spec, static_cast<std::size_t>(index)), true);
+  }
+#else
+  (void)spec;
+#endif
+}
+
+}  // namespace pkmws::cli
