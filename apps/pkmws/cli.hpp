@@ -34,6 +34,7 @@ void add_grid(CLI::App& app, std::vector<Command>& commands);     // grid baseli
 void add_compare(CLI::App& app, std::vector<Command>& commands);  // exact vs grid
 void add_levels(CLI::App& app, std::vector<Command>& commands);   // criterion bands (levels.cpp)
 void add_sweep(CLI::App& app, std::vector<Command>& commands);    // design-space sweeps (sweep.cpp)
+void add_atlas(CLI::App& app, std::vector<Command>& commands);    // contour maps of sweeps (atlas.cpp)
 /// `pkmws area` for a file with `criteria` limits: certified area bounds of the
 /// limited workspace (levels.cpp); `tolerance` relative to the area.
 Json criteria_area_report(const io::MechanismFile& mech, double tolerance);

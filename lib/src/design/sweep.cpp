@@ -133,6 +133,16 @@ std::string csv_field(const std::string& s) {
   return out + "\"";
 }
 
+std::optional<double> parse_number(const std::string& s) {
+  if (s.empty()) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (end != s.c_str() + s.size()) throw std::invalid_argument("not a number");
+  return v;
+}
+
+}  // namespace
+
 std::vector<std::string> split_csv(const std::string& line) {
   std::vector<std::string> out;
   std::string cur;
@@ -160,16 +170,6 @@ std::vector<std::string> split_csv(const std::string& line) {
   out.push_back(cur);
   return out;
 }
-
-std::optional<double> parse_number(const std::string& s) {
-  if (s.empty()) return std::nullopt;
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (end != s.c_str() + s.size()) throw std::invalid_argument("not a number");
-  return v;
-}
-
-}  // namespace
 
 const std::vector<std::string>& metric_names() {
   static const std::vector<std::string> names = [] {

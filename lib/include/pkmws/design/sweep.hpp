@@ -76,6 +76,8 @@ std::vector<DesignRow> run_sweep(const SweepSpec& spec, const std::vector<std::s
 /// column when `timing` is false, so that outputs compare byte for byte).
 std::string csv_header(const SweepSpec& spec, bool timing);
 std::string csv_line(const DesignRow& row, bool timing);
+/// The fields of one CSV line (RFC 4180 quoting).
+std::vector<std::string> split_csv(const std::string& line);
 /// Parses a line written by csv_line (for --resume and --merge); nullopt if
 /// it is incomplete or malformed.
 std::optional<DesignRow> parse_csv_line(const std::string& line, std::size_t parameters, std::size_t metrics,
