@@ -298,6 +298,7 @@ CriterionField five_bar_pressure_angle(const mechanisms::FiveBar& mechanism) {
   CriterionField c;
   c.name = "pressure_angle";
   c.unit = "deg";
+  c.threshold_max = 90.0;
   c.key = "five_bar.cos2eps";
   c.surrogate = std::make_shared<certified::TemplateField<FiveBarCosEps>>(impl);
   // α <= α_max  <=>  |cos ε| <= sin α_max  <=>  cos²ε <= sin²α_max.
@@ -332,6 +333,7 @@ CriterionField five_bar_reaction(const mechanisms::FiveBar& mechanism, double fo
   CriterionField c = five_bar_pressure_angle(mechanism);
   c.name = "reaction";
   c.unit = "N";
+  c.threshold_max = std::numeric_limits<double>::infinity();
   // R = f / |sin ε| <= R_max  <=>  cos²ε <= 1 - (f / R_max)² (docs/theory/five_bar.md).
   c.level = [force_N](double r_max) {
     if (!(r_max > 0.0)) return -1.0;
@@ -385,6 +387,7 @@ CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, i
   CriterionField c;
   c.name = "pressure_angle";
   c.unit = "deg";
+  c.threshold_max = 90.0;
   c.key = "three_rpr.vb2_" + std::to_string(leg);
   c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
   // [Briot]: cos α_i = |r_i . v_i| / |v_i| = 1 / |v_i|  =>  α_i <= α  <=>  |v_i|² <= 1 / cos²α.

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,6 +41,10 @@ struct CriterionField {
   std::shared_ptr<const certified::ScalarField> surrogate;
   /// Criterion threshold -> surrogate level (non-decreasing).
   std::function<double(double)> level;
+  /// The thresholds that mean something: the open interval (threshold_min,
+  /// threshold_max) (pressure angles (0, 90) deg; reactions and ratios > 0).
+  double threshold_min = 0.0;
+  double threshold_max = std::numeric_limits<double>::infinity();
   /// The criterion itself at a point (NaN where undefined, +inf at a singularity).
   std::function<double(geometry::Point)> value;
   /// Conservative test box ⊆ workspace (for cells that need no exact clipping).
