@@ -41,6 +41,7 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
                       c["threshold"].get<double>());
         }
         if (report.contains("stopped")) std::printf("STOPPED    %s\n", report["stopped"].get<std::string>().c_str());
+        if (report.contains("note")) std::printf("note       %s\n", report["note"].get<std::string>().c_str());
         std::printf("time       %.3f ms\n", report["time_ms"].get<double>());
       }
       return 0;

@@ -34,6 +34,7 @@ struct BandRun {
   criteria::CriterionField field;
   double time_ms = 0.0;
   bool stopped = false;  // the deadline of --max-time was reached
+  std::string note;      // why every band is empty without computing, or ""
 };
 
 BandRun run_bands(const io::MechanismFile& mech, const std::string& name, const std::vector<double>& levels,
@@ -52,7 +53,9 @@ BandRun run_bands(const io::MechanismFile& mech, const std::string& name, const 
       throw io::InputError(text);
     }
   }
-  const geometry::Region ws = mech.model->workspace();
+  // A criterion infinite everywhere has empty sub-level sets: nothing to refine.
+  run.note = fields.front().nowhere;
+  const geometry::Region ws = run.note.empty() ? mech.model->workspace() : geometry::Region{};
   certified::LevelSetOptions o;
   o.relative_tolerance = tolerance;
   for (std::size_t k = 0; k < levels.size(); ++k) {
@@ -231,6 +234,7 @@ Json criteria_area_report(const io::MechanismFile& mech, double tolerance, const
   report["curve_points"] = lw.detail.curve_points;
   report["time_ms"] = lw.time_ms;
   if (lw.detail.stopped && work) report["stopped"] = work->stopped_note();
+  if (!lw.note.empty()) report["note"] = lw.note;
   return report;
 }
 
@@ -279,6 +283,7 @@ void add_levels(CLI::App& app, std::vector<Command>& commands) {
     j["method"] = "certified";
     j["time_ms"] = run.time_ms;
     if (run.stopped) j["stopped"] = work.stopped_note();
+    if (!run.note.empty()) j["note"] = run.note;
     std::vector<std::pair<std::string, std::string>> outputs;  // all or nothing
     if (!a->svg.empty()) outputs.emplace_back(a->svg, svg_figure(mech, run));
     if (!a->csv.empty()) outputs.emplace_back(a->csv, curves_csv(run, levels));
@@ -301,6 +306,7 @@ void add_levels(CLI::App& app, std::vector<Command>& commands) {
                   run.sub[k].region.area_lower, run.sub[k].region.area_upper);
     }
     if (run.stopped) std::printf("STOPPED    %s\n", work.stopped_note().c_str());
+    if (!run.note.empty()) std::printf("note       %s\n", run.note.c_str());
     std::printf("time       %.1f ms\n", run.time_ms);
     return 0;
   }});

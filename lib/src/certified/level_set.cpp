@@ -22,6 +22,8 @@ using geometry::Region;
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
+// The most a retry four levels deeper is expected to narrow the bounds.
+constexpr double max_retry_gain = 64.0;
 
 Box make_box(double x0, double y0, double x1, double y1) {
   Box b;
@@ -693,8 +695,15 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
   LevelSetResult r = run_once(constraints, within, within_test, options, 0.0);
   // One retry with a tighter τ when the estimate of area or curve length was off
   // (not when the deadline stopped the first run: the retry would stop too).
+  // A retry deeper (undecided cells dominate) costs ~16 times the first run
+  // and narrows an undecided band along a curve ~16 times: when the width is
+  // far beyond that reach (a level at the field's extreme, where the set
+  // degenerates to a curve and the interval tests cannot decide its cells at
+  // any depth), the first run's bounds are the answer.
   const double width = r.region.area_upper - r.region.area_lower;
-  if (options.trace && !r.stopped && width > options.relative_tolerance * r.region.area_upper) {
+  const bool within_reach =
+      r.traced_width > 0.5 * width || width <= max_retry_gain * options.relative_tolerance * r.region.area_upper;
+  if (options.trace && !r.stopped && within_reach && width > options.relative_tolerance * r.region.area_upper) {
     LevelSetOptions o = options;
     double tau = 0.0;
     if (r.traced_width > 0.5 * width) {

@@ -195,6 +195,26 @@ struct ThreeRprTwist {
   }
 };
 
+// True when det A' vanishes to rounding at every position (the PAMINSA at
+// cos phi = R_p / R_b, docs/theory/three_dof.md): a cubic in (x, y) that is
+// below 1e-9 of Hadamard's bound (product of the row norms) at 25 points in
+// general position over `box` is the zero polynomial up to rounding.
+bool singular_everywhere(const ThreeRprTwist& t, const Box& box) {
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      const double x = box.min.x + box.width() * (i + 0.31831) / 5.0;
+      const double y = box.min.y + box.height() * (j + 0.57722) / 5.0;
+      double bound = 1.0;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const double n = std::hypot(x - t.e[k].x, y - t.e[k].y);
+        bound *= n * std::sqrt(1.0 + t.c[k].x * t.c[k].x + t.c[k].y * t.c[k].y);
+      }
+      if (!(std::abs(t.parts<double>(x, y).det) <= 1e-9 * bound)) return false;
+    }
+  }
+  return true;
+}
+
 // ---------------------------------------------------------------------------
 // Biglide velocity ratio V_i / V_y = |∂q_i/∂y| ([Strutynskyi] fig. 8) for the
 // paper's branches b_1 = b_2 = -1 (eq. 5-8), docs/theory/biglide.md:
@@ -452,6 +472,15 @@ std::vector<CriterionField> fields_for(const io::MechanismFile& file, const std:
     // The platform stays in the assembly mode of the workspace's centre (it
     // cannot cross the type-2 singularity, [Briot] fig. 12's dashed curve).
     const geometry::Box b = rpr->bounds();
+    if (singular_everywhere(ThreeRprTwist(*rpr, 0, 2, mechanisms::Load{}), b)) {
+      // Reactions and pressure angles are infinite at every position: every
+      // sub-level set is empty, known without refining anything.
+      for (auto& f : out) {
+        f.nowhere = "the 3-RPR is type-2 singular at every position at this orientation (cos phi = R_p / R_b): " +
+                    f.name + " is infinite everywhere";
+      }
+      return out;
+    }
     out.push_back(three_rpr_assembly_mode(*rpr, {0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)}));
     return out;
   }
@@ -534,8 +563,15 @@ LimitedWorkspace limited_workspace(const io::MechanismFile& file, const std::vec
       }
     }
   }
+  std::string nowhere;
+  for (const auto& [key, entry] : by_key) {
+    if (nowhere.empty()) nowhere = entry.first.nowhere;
+  }
   if (by_key.empty()) {
     out.region = certified::from_exact(within);
+  } else if (!nowhere.empty()) {
+    out.region = certified::from_exact(geometry::Region{});
+    out.note = nowhere;
   } else {
     std::vector<certified::Constraint> cs;
     certified::WithinTest within_test;

@@ -49,6 +49,9 @@ struct CriterionField {
   std::function<double(geometry::Point)> value;
   /// Conservative test box ⊆ workspace (for cells that need no exact clipping).
   certified::WithinTest within_test;
+  /// Non-empty when the criterion is infinite (or undefined) at every point,
+  /// with the reason: every sub-level set is empty, nothing needs refining.
+  std::string nowhere;
 };
 
 /// Five-bar (any link lengths, cranks without limits): α in degrees.
@@ -89,6 +92,8 @@ struct LimitedWorkspace {
   std::vector<certified::CurvePiece> curves;
   certified::LevelSetResult detail;      // pieces and statistics (region and curves moved out)
   double time_ms = 0.0;
+  /// Why the region is empty without any refinement (a field's `nowhere`), or "".
+  std::string note;
 };
 /// The workspace of `file` limited by `limits` (same surrogate: the stricter
 /// level; several surrogates: one certified intersection of sub-level sets).
