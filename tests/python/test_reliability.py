@@ -112,6 +112,41 @@ def test_levels_stop_at_max_time_with_labelled_bounds():
     assert bare_nulls(j) == []
 
 
+def test_progress_line_on_a_terminal():
+    # Silence for minutes is not acceptable: on a terminal, work longer than a
+    # second reports its progress on stderr (and erases the line at the end).
+    import os
+    import pty
+    master, slave = pty.openpty()
+    try:
+        r = subprocess.run([CLI, "levels", str(FIVE_BAR), "--criterion", "pressure_angle", "--levels", "1e-9",
+                            "--json", "--max-time", "3"], stdout=subprocess.PIPE, stderr=slave, timeout=HANG)
+        os.close(slave)
+        slave = -1
+        err = b""
+        while True:
+            try:
+                chunk = os.read(master, 65536)
+            except OSError:
+                break
+            if not chunk:
+                break
+            err += chunk
+    finally:
+        if slave >= 0:
+            os.close(slave)
+        os.close(master)
+    assert r.returncode == 0
+    text = err.decode(errors="replace")
+    assert "pkmws levels: level 1 of 1" in text and "% of the cells refined" in text, text[-500:]
+    assert text.endswith("\r\x1b[K"), repr(text[-80:])
+
+
+def test_no_progress_line_when_stderr_is_not_a_terminal():
+    r = pkmws("levels", FIVE_BAR, "--criterion", "pressure_angle", "--levels", "1e-9", "--json", "--max-time", "2")
+    assert r.returncode == 0 and r.stderr == ""
+
+
 def test_export_stopped_by_max_time_writes_nothing(tmp_path):
     out = tmp_path / "limited.svg"
     r = pkmws("export", DATASET / "three_rpr_paminsa_phi0_r200.json", "-f", "svg", "-o", out, "--max-time", "0.2")
@@ -170,6 +205,19 @@ def test_duplicate_keys_are_errors_naming_the_path(tmp_path):
     assert text.count('"rod_length"') == 3
     nested = write(tmp_path, "nested.json", text)
     refused(pkmws("info", nested), "legs[0].rod_length: duplicate key")
+
+
+def test_null_stroke_is_refused(tmp_path):
+    # Read as "no limit for this chain" without saying so; dk then accepted
+    # any slider position on that chain.
+    doc = json.loads((DATASET / "three_prp_example.json").read_text())
+    doc["strokes"][0] = None
+    f = write(tmp_path, "prp.json", json.dumps(doc))
+    refused(pkmws("dk", f, "10", "10", "10"), "strokes[0]", "null")
+    doc = json.loads((DATASET / "three_rrp_mitsi.json").read_text())
+    doc["crank_limits_deg"] = [[0, 90], None, [0, 90]]
+    f = write(tmp_path, "rrp.json", json.dumps(doc))
+    refused(pkmws("info", f), "crank_limits_deg[1]", "null")
 
 
 @pytest.mark.parametrize("text", ["0x10", " 1", "1 ", "+-1", "1e400", "nan", "inf", "1,5", ""])
