@@ -9,7 +9,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PKMWS := build/bin/pkmws
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build demo test bench clean
+.PHONY: all deps configure build demo test sanitize bench clean
 
 all: build
 
@@ -34,8 +34,17 @@ demo: build
 test: build
 	ctest --preset release -j $(JOBS)
 
+# AddressSanitizer + UndefinedBehaviorSanitizer (preset `sanitize`, build-sanitize/):
+# every test but those labelled `heavy` (minutes under ASan), the fuzz corpus
+# and the generative loader fuzzing included. UBSan stops at the first report;
+# tests/sanitize/ubsan.supp holds the one suppression (CGAL, with the reason).
+sanitize: deps
+	@[ -f build-sanitize/CMakeCache.txt ] || cmake --preset sanitize
+	cmake --build --preset sanitize -j $(JOBS)
+	ctest --preset sanitize -j $(JOBS)
+
 bench: build
 	bash benchmarks/run.sh
 
 clean:
-	rm -rf build out
+	rm -rf build build-sanitize out

@@ -24,12 +24,15 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
                   "Files with bodies: quadtree depth of the certified interference regions "
                   "(each level about halves the real area's bound width; default 7)")
       ->check(CLI::Range(0, 12));
-  commands.push_back({sub, [file, json, depth, rectangle_precision] {
+  auto max_time = std::make_shared<double>(0.0);
+  add_max_time_option(sub, *max_time);
+  commands.push_back({sub, [file, json, depth, max_time, rectangle_precision] {
     const auto start = std::chrono::steady_clock::now();
     const io::MechanismFile mech = io::load_mechanism(*file);
     if (mech.criteria.any()) {
       // Criteria limits: certified level sets (levels.cpp, docs/theory/level_sets.md).
-      Json report = criteria_area_report(mech, 1e-6);
+      const CertifiedWork work("area", *max_time);
+      Json report = criteria_area_report(mech, 1e-6, &work);
       report["time_ms"] = elapsed_ms(start);
       if (*json) {
         print_json(report);
@@ -42,6 +45,8 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
           std::printf("           limited by %s <= %g\n", c["criterion"].get<std::string>().c_str(),
                       c["threshold"].get<double>());
         }
+        if (report.contains("stopped")) std::printf("STOPPED    %s\n", report["stopped"].get<std::string>().c_str());
+        if (report.contains("note")) std::printf("note       %s\n", report["note"].get<std::string>().c_str());
         std::printf("time       %.3f ms\n", report["time_ms"].get<double>());
       }
       return 0;

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "pkmws/certified/level_set.hpp"
 #include "pkmws/geometry/region.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 
@@ -35,22 +36,70 @@ void add_compare(CLI::App& app, std::vector<Command>& commands);  // exact vs gr
 void add_levels(CLI::App& app, std::vector<Command>& commands);   // criterion bands (levels.cpp)
 void add_sweep(CLI::App& app, std::vector<Command>& commands);    // design-space sweeps (sweep.cpp)
 void add_atlas(CLI::App& app, std::vector<Command>& commands);    // contour maps of sweeps (atlas.cpp)
+/// The bound of a certified computation (`--max-time SECONDS`) and its progress
+/// line: on stderr, when stderr is a terminal and the work has run for more
+/// than a second, rewritten in place and erased at the end.
+class CertifiedWork {
+ public:
+  /// Starts the clock; `max_seconds` 0 is no bound.
+  CertifiedWork(std::string command, double max_seconds);
+  ~CertifiedWork();
+  CertifiedWork(const CertifiedWork&) = delete;
+  CertifiedWork& operator=(const CertifiedWork&) = delete;
+  /// `o` with the deadline and the progress reporter of `stage` ("level 2 of 3").
+  certified::LevelSetOptions options(certified::LevelSetOptions o, const std::string& stage = "") const;
+  /// What a result cut short by the deadline says about itself.
+  std::string stopped_note() const;
+  double max_seconds() const { return max_seconds_; }
+
+ private:
+  struct Line;
+  std::shared_ptr<Line> line_;
+  double max_seconds_;
+  std::chrono::steady_clock::time_point start_;
+};
+/// Adds `--max-time SECONDS` (a positive number) to a certified command.
+void add_max_time_option(CLI::App* sub, double& seconds);
+
 /// `pkmws area` for a file with `criteria` limits: certified area bounds of the
-/// limited workspace (levels.cpp); `tolerance` relative to the area.
-Json criteria_area_report(const io::MechanismFile& mech, double tolerance);
+/// limited workspace (levels.cpp); `tolerance` relative to the area. With
+/// `work`, bounded by its deadline (the report then has `stopped`).
+Json criteria_area_report(const io::MechanismFile& mech, double tolerance, const CertifiedWork* work = nullptr);
 /// What `pkmws levels` writes for a criterion at increasing levels "a,b,c":
 /// the band figure (svg) or the traced level curves (csv: level, piece, x, y).
+/// With `work`, bounded by its deadline; `stopped` (if given) says whether it was reached.
 std::string bands_export(const io::MechanismFile& mech, const std::string& criterion, const std::string& levels,
-                         bool svg, double tolerance);
+                         bool svg, double tolerance, const CertifiedWork* work = nullptr, bool* stopped = nullptr);
 /// Writes the curve charts of a 1-DOF file into `dir`; returns the file names.
 std::vector<std::string> write_curve_figures(const io::MechanismFile& mech, const std::string& dir);
+
+/// Checks, before any work, that every non-empty path can be written: a file
+/// name in an existing, writable directory, not a directory itself, no path
+/// given twice. Throws io::InputError naming the first that cannot.
+void check_outputs(const std::vector<std::string>& paths);
+/// Writes several files all or nothing: each goes to a temporary file next to
+/// it first; only when all are written are they renamed into place. On any
+/// failure the temporary files are removed and nothing is changed.
+void write_outputs(const std::vector<std::pair<std::string, std::string>>& files);
 
 /// Milliseconds since `start`.
 double elapsed_ms(std::chrono::steady_clock::time_point start);
 /// Prints JSON (indented) to stdout.
 void print_json(const Json& j);
-/// Parses a number argument ("X", "Q1", ...) or throws io::InputError.
+/// Parses a number argument ("X", "Q1", ...) in decimal notation (no spaces,
+/// hexadecimal, inf or nan) or throws io::InputError naming `what`.
 double parse_number(const std::string& text, const std::string& what);
+/// Largest magnitudes of positions / lengths (the file format's limit) and of
+/// angles in degrees accepted on the command line: beyond them the double
+/// arithmetic of the kinematics gives nothing meaningful (1e308 overflows).
+inline constexpr double max_argument_length = 1e15;
+inline constexpr double max_argument_degrees = 1e6;
+/// parse_number within those magnitudes; errors name `what`.
+double parse_length(const std::string& text, const std::string& what);
+double parse_angle(const std::string& text, const std::string& what);
+/// Makes every numeric option of `app` and its subcommands as strict as
+/// parse_number (CLI11 alone takes "0x10", " 1" and "010" = 8).
+void strict_numeric_options(CLI::App& app);
 
 /// The file's exact workspace, or throws io::InputError when the mechanism has
 /// none (e.g. a lone Pi-joint) with the mechanism's reason.

@@ -1,11 +1,19 @@
+#include <unistd.h>
+
 #include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <filesystem>
 #include <cstdlib>
 #include <iostream>
+#include <mutex>
 #include <numbers>
+#include <optional>
 
 #include "cli.hpp"
 #include "pkmws/geometry/inscribed.hpp"
 #include "pkmws/geometry/inscribed_rectangle.hpp"
+#include "pkmws/io/export.hpp"
 
 namespace pkmws::cli {
 
@@ -13,15 +21,239 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-void print_json(const Json& j) { std::cout << j.dump(2) << "\n"; }
+namespace {
 
-double parse_number(const std::string& text, const std::string& what) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) {
-    throw io::InputError(what + ": expected a number, got \"" + text + "\"");
+// The contract of every JSON report: no bare null. A null (or an array holding
+// one) at `key` comes with `key`_reason, or lies in an object that has a
+// `reason` (an unreachable mode). A null that slipped through without one gets
+// a generic reason rather than none.
+void give_nulls_reasons(Json& j, bool reason_in_scope) {
+  if (j.is_array()) {
+    for (auto& e : j) give_nulls_reasons(e, reason_in_scope);
+    return;
+  }
+  if (!j.is_object()) return;
+  const bool scope = reason_in_scope || (j.contains("reason") && j["reason"].is_string());
+  std::vector<std::string> missing;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    bool holds_null = it.value().is_null();
+    if (it.value().is_array()) {
+      for (const auto& e : it.value()) holds_null = holds_null || e.is_null();
+    }
+    if (holds_null && !scope && !j.contains(it.key() + "_reason")) missing.push_back(it.key());
+    give_nulls_reasons(it.value(), scope);
+  }
+  for (const auto& k : missing) j[k + "_reason"] = "undefined here (not a finite number)";
+}
+
+}  // namespace
+
+void print_json(const Json& j) {
+  Json out = j;
+  give_nulls_reasons(out, false);
+  std::cout << out.dump(2) << "\n";
+}
+
+namespace {
+
+// Decimal notation only: an optional sign, digits with an optional point, an
+// optional exponent ("12", "-0.5", ".5", "1e-3"); no spaces, no hexadecimal,
+// no "inf"/"nan". std::nullopt with the reason otherwise.
+std::optional<double> strict_double(const std::string& text, std::string& problem) {
+  std::size_t i = 0;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  std::size_t digits = 0;
+  while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i, ++digits;
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i, ++digits;
+  }
+  if (digits > 0 && i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    std::size_t j = i + 1;
+    if (j < text.size() && (text[j] == '+' || text[j] == '-')) ++j;
+    const std::size_t exp_start = j;
+    while (j < text.size() && text[j] >= '0' && text[j] <= '9') ++j;
+    if (j > exp_start) i = j;
+  }
+  if (text.empty() || digits == 0 || i != text.size()) {
+    problem = "expected a decimal number, got \"" + text + "\"";
+    return std::nullopt;
+  }
+  // The syntax is checked: strtod reads exactly this (underflow gives 0 or a subnormal).
+  const double v = std::strtod(text.c_str(), nullptr);
+  if (!std::isfinite(v)) {
+    problem = "\"" + text + "\" is out of the range of a double";
+    return std::nullopt;
   }
   return v;
+}
+
+}  // namespace
+
+double parse_number(const std::string& text, const std::string& what) {
+  std::string problem;
+  const auto v = strict_double(text, problem);
+  if (!v) throw io::InputError(what + ": " + problem);
+  return *v;
+}
+
+double parse_length(const std::string& text, const std::string& what) {
+  const double v = parse_number(text, what);
+  if (!(std::abs(v) <= max_argument_length)) {
+    throw io::InputError(what + ": " + text + " is beyond the magnitude where positions mean something (1e15)");
+  }
+  return v;
+}
+
+double parse_angle(const std::string& text, const std::string& what) {
+  const double v = parse_number(text, what);
+  if (!(std::abs(v) <= max_argument_degrees)) {
+    throw io::InputError(what + ": " + text + " degrees is beyond the magnitude where angles mean something (1e6)");
+  }
+  return v;
+}
+
+void strict_numeric_options(CLI::App& app) {
+  const CLI::Validator decimal_number(
+      [](std::string& text) {
+        std::string problem;
+        return strict_double(text, problem) ? std::string() : problem;
+      },
+      "", "decimal number");
+  // CLI11 reads integers with strtoll(base 0): "0x10" would be 16 and "010" 8.
+  const CLI::Validator decimal_integer(
+      [](std::string& text) {
+        std::size_t i = (!text.empty() && (text[0] == '+' || text[0] == '-')) ? 1 : 0;
+        const bool ok = i < text.size() && text.find_first_not_of("0123456789", i) == std::string::npos &&
+                        (text[i] != '0' || i + 1 == text.size());
+        return ok ? std::string() : "expected a decimal integer, got \"" + text + "\"";
+      },
+      "", "decimal integer");
+  auto visit = [&](CLI::App& a, auto& self) -> void {
+    for (CLI::Option* opt : a.get_options()) {
+      const std::string type = opt->get_type_name();
+      if (type.rfind("FLOAT", 0) == 0) {
+        opt->check(decimal_number);
+      } else if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0) {
+        opt->check(decimal_integer);
+      }
+    }
+    for (CLI::App* sub : a.get_subcommands([](CLI::App*) { return true; })) self(*sub, self);
+  };
+  visit(app, visit);
+}
+
+void check_outputs(const std::vector<std::string>& paths) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> seen;
+  for (const std::string& text : paths) {
+    if (text.empty()) continue;
+    const fs::path path(text);
+    auto fail = [&text](const std::string& reason) { throw io::InputError(text + ": cannot write: " + reason); };
+    if (!path.has_filename()) fail("not a file name");
+    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) fail("directory " + dir.string() + " does not exist");
+    if (fs::is_directory(path, ec)) fail("is a directory");
+    if (::access(dir.c_str(), W_OK | X_OK) != 0) fail("directory " + dir.string() + " is not writable");
+    if (fs::exists(path, ec) && ::access(path.c_str(), W_OK) != 0) fail("the file is not writable");
+    const fs::path key = fs::weakly_canonical(path, ec);
+    for (const fs::path& s : seen) {
+      if (s == key) fail("given twice as an output");
+    }
+    seen.push_back(key);
+  }
+}
+
+void write_outputs(const std::vector<std::pair<std::string, std::string>>& files) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> paths;
+  for (const auto& f : files) paths.push_back(f.first);
+  check_outputs(paths);
+  std::vector<fs::path> temps;
+  auto discard = [&temps] {
+    std::error_code ignore;
+    for (const auto& t : temps) fs::remove(t, ignore);
+  };
+  for (const auto& [path, content] : files) {
+    const fs::path tmp = path + ".partial-" + std::to_string(::getpid());
+    try {
+      io::write_file_atomic(tmp, content);
+    } catch (const std::exception& e) {
+      discard();
+      std::string reason = e.what();
+      const auto pos = reason.find(": cannot write: ");
+      throw io::InputError(path + ": cannot write: " +
+                           (pos == std::string::npos ? reason : reason.substr(pos + 16)));
+    }
+    temps.push_back(tmp);
+  }
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    std::error_code ec;
+    fs::rename(temps[k], files[k].first, ec);
+    if (ec) {
+      temps.erase(temps.begin(), temps.begin() + static_cast<std::ptrdiff_t>(k));
+      discard();
+      throw io::InputError(files[k].first + ": cannot write: " + ec.message());
+    }
+  }
+}
+
+struct CertifiedWork::Line {
+  std::string command;
+  std::chrono::steady_clock::time_point start;
+  std::chrono::steady_clock::time_point last{};
+  bool tty = false;
+  bool drawn = false;
+  std::mutex mutex;
+};
+
+CertifiedWork::CertifiedWork(std::string command, double max_seconds)
+    : line_(std::make_shared<Line>()), max_seconds_(max_seconds), start_(std::chrono::steady_clock::now()) {
+  line_->command = std::move(command);
+  line_->start = start_;
+  line_->tty = ::isatty(STDERR_FILENO) == 1;
+}
+
+CertifiedWork::~CertifiedWork() {
+  std::lock_guard lock(line_->mutex);
+  if (line_->drawn) std::fprintf(stderr, "\r\033[K");
+}
+
+certified::LevelSetOptions CertifiedWork::options(certified::LevelSetOptions o, const std::string& stage) const {
+  if (max_seconds_ > 0.0) {
+    o.deadline = start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                              std::chrono::duration<double>(max_seconds_));
+  }
+  if (line_->tty) {
+    o.progress = [line = line_, stage, bound = max_seconds_](double fraction) {
+      const auto now = std::chrono::steady_clock::now();
+      std::lock_guard lock(line->mutex);
+      const double seconds = std::chrono::duration<double>(now - line->start).count();
+      if (seconds < 1.0 || now - line->last < std::chrono::milliseconds(200)) return;
+      line->last = now;
+      line->drawn = true;
+      std::fprintf(stderr, "\r\033[Kpkmws %s: %s%s%.0f %% of the cells refined, %.1f s", line->command.c_str(),
+                   stage.c_str(), stage.empty() ? "" : ", ", 100.0 * fraction, seconds);
+      if (bound > 0.0) std::fprintf(stderr, " (--max-time %g)", bound);
+      std::fflush(stderr);
+    };
+  }
+  return o;
+}
+
+std::string CertifiedWork::stopped_note() const {
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "stopped at --max-time %g s: the bounds are valid but wider than the tolerance asked for", max_seconds_);
+  return buf;
+}
+
+void add_max_time_option(CLI::App* sub, double& seconds) {
+  sub->add_option("--max-time", seconds,
+                  "Stop refining after SECONDS: the certified bounds reached so far, labelled `stopped` "
+                  "(default: no bound; a progress line on a terminal)")
+      ->check(CLI::PositiveNumber);
 }
 
 geometry::Region workspace_of(const io::MechanismFile& file) {

@@ -102,9 +102,10 @@ void add_compare(CLI::App& app, std::vector<Command>& commands) {
       ->check(CLI::PositiveNumber);
   sub->add_option("--threads", o->threads, "Threads (0 = all)")->check(CLI::Range(0, 1024));
   sub->add_option("--ladder", o->ladder, "Cells per side of the uniform grids (default 100 ... 16000)")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));
-  sub->add_option("--depths", o->depths, "Quadtree depths (default 2 4 ... 20)")->check(CLI::Range(0, 30));
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 14));  // as pkmws grid --cells
+  sub->add_option("--depths", o->depths, "Quadtree depths (default 2 4 ... 20, at most 20)")->check(CLI::Range(0, 20));
   commands.push_back({sub, [o] {
+    check_outputs({o->csv});  // before minutes of work, not after
     const io::MechanismFile mech = io::load_mechanism(o->file);
     grid::CompareOptions co;
     co.time_budget_ms = 1000.0 * o->budget_s;

@@ -146,7 +146,7 @@ void add_explain(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("Y", a->y, "Platform y")->required();
   sub->add_flag("--json", a->json, "Print one JSON object");
   commands.push_back({sub, [a] {
-    const double x = parse_number(a->x, "X"), y = parse_number(a->y, "Y");
+    const double x = parse_length(a->x, "X"), y = parse_length(a->y, "Y");
     const io::MechanismFile mech = io::load_mechanism(a->file);
     if (!mech.bodies) throw io::InputError(a->file + ": the file lists no `bodies` (docs/format.md (bodies)): nothing can collide");
     Json out = collisions_json(mech, {x, y});

@@ -17,6 +17,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     bool real = false;
     std::string bound = "outer";
     std::string criterion, levels;
+    double max_time = 0.0;
   };
   auto a = std::make_shared<Args>();
   sub->add_option("FILE", a->file, "Mechanism file (JSON)")->required();
@@ -38,15 +39,27 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
                   "With --levels: export the bands of a criterion (pressure_angle, reaction, velocity_ratio) "
                   "instead of the workspace: svg = band figure, csv = traced level curves");
   sub->add_option("--levels", a->levels, "Increasing thresholds of --criterion, e.g. 20,40,60,80");
+  add_max_time_option(sub, a->max_time);
   commands.push_back({sub, [a] {
     const io::ExportFormat format = io::parse_export_format(a->format);
+    check_outputs({a->out});
+    // Certified regions (criteria limits, bands): a bound stops the work with
+    // exit 2 and no file (an export does not carry a `stopped` label).
+    const CertifiedWork work("export", a->max_time);
+    auto refuse_stopped = [&work] {
+      throw io::InputError("--max-time: " + work.stopped_note() + "; nothing written (give more time)");
+    };
     if (a->criterion.empty() != a->levels.empty()) throw io::InputError("--criterion and --levels go together");
     if (!a->criterion.empty()) {
       if (format != io::ExportFormat::svg && format != io::ExportFormat::csv) {
         throw io::InputError("--criterion: the bands export as svg (figure) or csv (traced level curves)");
       }
       const io::MechanismFile mech = io::load_mechanism(a->file);
-      io::write_file_atomic(a->out, bands_export(mech, a->criterion, a->levels, format == io::ExportFormat::svg, 1e-4));
+      bool stopped = false;
+      const std::string content =
+          bands_export(mech, a->criterion, a->levels, format == io::ExportFormat::svg, 1e-4, &work, &stopped);
+      if (stopped) refuse_stopped();
+      io::write_file_atomic(a->out, content);
       return 0;
     }
     if (a->tolerance < 0.0 || !std::isfinite(a->tolerance)) {
@@ -62,7 +75,8 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       certified::LevelSetOptions lo;
       lo.relative_tolerance = 1e-4;
       lo.build_regions = true;
-      const auto lw = criteria::limited_workspace(mech, criteria::file_limits(mech), lo);
+      const auto lw = criteria::limited_workspace(mech, criteria::file_limits(mech), work.options(lo));
+      if (lw.detail.stopped) refuse_stopped();
       enclosure = lw.region;
       for (const auto& l : criteria::file_limits(mech)) {
         char buf[96];

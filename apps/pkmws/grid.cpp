@@ -32,6 +32,9 @@ double file_orientation(const io::MechanismFile& mech) {
 }  // namespace
 
 void add_grid(CLI::App& app, std::vector<Command>& commands) {
+  // 16384^2 = 2.7e8 point tests: seconds with the MOMA kernel, minutes with the
+  // slowest membership tests; finer resolution is what --adaptive is for.
+  constexpr std::size_t max_grid_cells = std::size_t{1} << 14;
   auto* sub = app.add_subcommand("grid", "Grid estimate of the workspace area (the papers' sampling baseline)");
   struct Options {
     std::string file;
@@ -50,7 +53,7 @@ void add_grid(CLI::App& app, std::vector<Command>& commands) {
                   "Cells per side: N x N Cartesian cells over the bounding box; with --polar N rings x ~pi N "
                   "sectors; with --adaptive the root grid; with --sweep the raster")
       ->required()
-      ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));
+      ->check(CLI::Range(std::size_t{1}, max_grid_cells));
   sub->add_flag("--polar", o->polar, "Polar grid about the centre of the bounding box ([Vasilic] figs. 9-11a)");
   sub->add_option("--adaptive", o->adaptive, "Quadtree refined DEPTH levels below the root grid")
       ->check(CLI::Range(0, 30));
@@ -68,6 +71,15 @@ void add_grid(CLI::App& app, std::vector<Command>& commands) {
         mech.criteria.any() ? criteria::limited_mechanism(mech) : mech.model;
     if (int(o->polar) + int(o->adaptive >= 0) + int(o->sweep) > 1) {
       throw io::InputError("grid: give at most one of --polar, --adaptive, --sweep");
+    }
+    // Bounds on the work (minutes at the slowest membership tests, ~5e5 per second).
+    if (o->adaptive >= 0 && std::ldexp(static_cast<double>(o->cells), o->adaptive) > 0x1p24) {
+      throw io::InputError("--adaptive: --cells x 2^DEPTH must not exceed 2^24 cells per side (got " +
+                           std::to_string(o->cells) + " x 2^" + std::to_string(o->adaptive) + ")");
+    }
+    if (o->sweep && std::pow(static_cast<double>(o->samples ? o->samples : 5 * o->cells), mech.model->dof()) > 0x1p28) {
+      throw io::InputError("--samples: at most 2^28 direct-kinematics samples in all (samples^" +
+                           std::to_string(mech.model->dof()) + "); give fewer --samples or --cells");
     }
     grid::Execution exec;
     exec.threads = o->threads;

@@ -59,7 +59,7 @@ Json assur_report(const mechanisms::ThreeRrp& m, const std::vector<double>& q) {
       for (std::size_t i = 0; i < 3; ++i)
         difference = std::max(difference, geometry::norm(closed[k].vertices[i] - e.assemblies[k].vertices[i]));
   }
-  return Json{{"method", "Sylvester elimination of s2, s3 ([Mitsi] eq. 12-13)"},
+  Json report{{"method", "Sylvester elimination of s2, s3 ([Mitsi] eq. 12-13)"},
               {"variable", "sigma = s1 / L"},
               {"length_scale_L", e.length_scale},
               {"nominal_degree", 8},
@@ -72,6 +72,8 @@ Json assur_report(const mechanisms::ThreeRrp& m, const std::vector<double>& q) {
               {"assemblies", e.assemblies.size()},
               {"closed_form_assemblies", closed.size()},
               {"max_vertex_difference", same_count ? Json(difference) : Json(nullptr)}};
+  if (!same_count) report["max_vertex_difference_reason"] = "the two methods found different numbers of assemblies";
+  return report;
 }
 
 Json rpr_report(const mechanisms::ThreeRpr& m, const std::vector<double>& q) {
@@ -119,22 +121,49 @@ Json joints_json(const mechanisms::Mechanism& m, const std::vector<double>& q) {
   return out;
 }
 
-Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+// Why a figure of an evaluation is not a finite number (JSON null next to it).
+std::string undefined_reason(const mechanisms::Evaluation& e) {
+  if (!e.reachable) return "undefined: the pose is not reachable in this mode";
+  if (e.singular) return "infinite or undefined: the pose is singular (" + e.singularity + ")";
+  return "undefined at this pose (not a finite number)";
+}
+
+// `key`: v, or null with `key`_reason next to it.
+void put_number(Json& j, const std::string& key, double v, const std::string& reason) {
+  if (std::isfinite(v)) {
+    j[key] = v;
+  } else {
+    j[key] = nullptr;
+    j[key + "_reason"] = reason;
+  }
+}
+
+// `key`: the values, non-finite ones null, with `key`_reason when there is one.
+void put_numbers(Json& j, const std::string& key, const std::vector<double>& v, const std::string& reason) {
+  Json a = Json::array();
+  bool undefined = false;
+  for (double x : v) {
+    a.push_back(std::isfinite(x) ? Json(x) : Json(nullptr));
+    undefined = undefined || !std::isfinite(x);
+  }
+  j[key] = a;
+  if (undefined) j[key + "_reason"] = reason;
+}
 
 mechanisms::Pose read_pose(const io::MechanismFile& mech, const std::vector<std::string>& v) {
   const int dof = mech.model->dof();
   mechanisms::Pose pose;
   if (dof == 1) {
     if (v.size() != 1) throw io::InputError("expected one value: THETA_DEG");
-    pose.phi = parse_number(v[0], "THETA_DEG") * deg;
+    pose.phi = parse_angle(v[0], "THETA_DEG") * deg;
     return pose;
   }
   if (v.size() < 2 || v.size() > 3 || (dof == 3 && v.size() != 3)) {
     throw io::InputError(dof == 3 ? "expected X Y PHI_DEG" : "expected X Y");
   }
-  pose.x = parse_number(v[0], "X");
-  pose.y = parse_number(v[1], "Y");
-  if (v.size() == 3) pose.phi = parse_number(v[2], "PHI_DEG") * deg;
+  pose.x = parse_length(v[0], "X");
+  pose.y = parse_length(v[1], "Y");
+  if (v.size() == 3) pose.phi = parse_angle(v[2], "PHI_DEG") * deg;
   return pose;
 }
 
@@ -192,13 +221,16 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands) {
     }
     std::vector<double> q;
     for (std::size_t i = 0; i < info.size(); ++i) {
-      const double v = parse_number(dk->values[i], info[i].name);
+      const double v = info[i].angle ? parse_angle(dk->values[i], info[i].name + "_deg")
+                                     : parse_length(dk->values[i], info[i].name);
       q.push_back(info[i].angle ? v * deg : v);
     }
     Json out = header(mech);
     out["joints"] = joints_json(*mech.model, q);
     Json sols = Json::array();
     const auto solutions = mech.model->direct(q);
+    std::vector<std::pair<std::string, std::string>> figures;  // written together, all or nothing
+    if (!dk->svg.empty()) check_outputs({dk->svg + "_1.svg"});
     for (std::size_t k = 0; k < solutions.size(); ++k) {
       const auto& s = solutions[k];
       Json j{{"mode", s.mode}, {"valid", s.valid}, {"pose", pose_json(mech.model->dof(), s.pose)}};
@@ -220,12 +252,13 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands) {
         if (mech.model->dof() == 3) pose_text += ", phi = " + short_number(s.pose.phi / deg) + " deg";
         fo.caption = mech.name + ". " + pose_text + (ws.empty() ? "" : "; shaded: the workspace at this orientation") +
                      (s.valid ? "" : "; not valid: " + s.reason);
-        io::write_file_atomic(path, io::workspace_figure(mech, ws, s.pose, fo));
+        figures.emplace_back(path, io::workspace_figure(mech, ws, s.pose, fo));
         j["figure"] = path;
       }
       sols.push_back(j);
     }
     out["solutions"] = sols;
+    write_outputs(figures);
     if (const auto* rrp = dynamic_cast<const mechanisms::ThreeRrp*>(mech.model.get())) {
       out["elimination"] = assur_report(*rrp, q);
     } else if (const auto* rpr = dynamic_cast<const mechanisms::ThreeRpr*>(mech.model.get())) {
@@ -262,20 +295,29 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands) {
       if (std::isfinite(best)) distance_type2 = best;
     }
     out["distance_to_type2_singularity"] = distance_type2;
+    if (distance_type2.is_null()) {
+      out["distance_to_type2_singularity_reason"] = "no type-2 singularity curve is traced for this mechanism at this orientation";
+    }
     Json modes = Json::array();
     for (const auto& e : mech.model->evaluate(pose, mech.criteria)) {
+      const std::string why = undefined_reason(e);
       Json j{{"mode", e.mode},
              {"reachable", e.reachable},
              {"joints", joints_json(*mech.model, e.joints)},
-             {"jacobian_det", number_or_null(e.jacobian_det)},
-             {"condition_number", number_or_null(e.condition_number)},
              {"singular", e.singular},
-             {"singularity", e.singularity},
-             {"pressure_angle_deg", e.pressure_angle_deg},
-             {"reactions_N", e.reactions_N},
-             {"velocity_ratio", e.velocity_ratio ? number_or_null(*e.velocity_ratio) : Json(nullptr)}};
+             {"singularity", e.singularity}};
+      put_number(j, "jacobian_det", e.jacobian_det, why);
+      put_number(j, "condition_number", e.condition_number, why);
+      put_numbers(j, "pressure_angle_deg", e.pressure_angle_deg, why);
+      put_numbers(j, "reactions_N", e.reactions_N, why);
+      if (e.velocity_ratio) {
+        put_number(j, "velocity_ratio", *e.velocity_ratio, why);
+      } else {
+        j["velocity_ratio"] = nullptr;
+        j["velocity_ratio_reason"] = "not defined for this mechanism";
+      }
       if (!e.reachable) j["reason"] = e.reason;
-      for (const auto& [k, v] : e.extra) j[k] = number_or_null(v);
+      for (const auto& [k, v] : e.extra) put_number(j, k, v, why);
       modes.push_back(j);
     }
     out["modes"] = modes;

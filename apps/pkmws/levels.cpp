@@ -33,21 +33,37 @@ struct BandRun {
   std::vector<certified::Band> bands;
   criteria::CriterionField field;
   double time_ms = 0.0;
+  bool stopped = false;  // the deadline of --max-time was reached
+  std::string note;      // why every band is empty without computing, or ""
 };
 
 BandRun run_bands(const io::MechanismFile& mech, const std::string& name, const std::vector<double>& levels,
-                  double tolerance) {
+                  double tolerance, const CertifiedWork* work = nullptr) {
   BandRun run;
   const auto start = std::chrono::steady_clock::now();
   const auto fields = criteria::fields_for(mech, name);
   run.field = fields.front();
-  const geometry::Region ws = mech.model->workspace();
+  for (double t : levels) {
+    // Outside the criterion's range the sub-level set is empty or everything,
+    // and at its ends it degenerates to a curve: refused, not computed.
+    if (!(t > run.field.threshold_min && t < run.field.threshold_max)) {
+      char text[160];
+      std::snprintf(text, sizeof text, "--levels: %g is outside the range of %s, (%g, %g) %s", t, name.c_str(),
+                    run.field.threshold_min, run.field.threshold_max, run.field.unit.c_str());
+      throw io::InputError(text);
+    }
+  }
+  // A criterion infinite everywhere has empty sub-level sets: nothing to refine.
+  run.note = fields.front().nowhere;
+  const geometry::Region ws = run.note.empty() ? mech.model->workspace() : geometry::Region{};
   certified::LevelSetOptions o;
   o.relative_tolerance = tolerance;
-  for (double t : levels) {
+  for (std::size_t k = 0; k < levels.size(); ++k) {
     std::vector<certified::Constraint> cs;
-    for (const auto& f : fields) cs.push_back({f.surrogate.get(), f.level(t)});
-    run.sub.push_back(certified::sublevel_set(cs, ws, fields.front().within_test, o));
+    for (const auto& f : fields) cs.push_back({f.surrogate.get(), f.level(levels[k])});
+    const std::string stage = "level " + std::to_string(k + 1) + " of " + std::to_string(levels.size());
+    run.sub.push_back(certified::sublevel_set(cs, ws, fields.front().within_test, work ? work->options(o, stage) : o));
+    run.stopped = run.stopped || run.sub.back().stopped;
   }
   run.levels = levels;
   run.bands = certified::bands_from_sublevels(levels, run.sub);
@@ -189,17 +205,18 @@ std::string curves_csv(const BandRun& run, const std::vector<double>& levels) {
 }  // namespace
 
 std::string bands_export(const io::MechanismFile& mech, const std::string& criterion, const std::string& levels_text,
-                         bool svg, double tolerance) {
+                         bool svg, double tolerance, const CertifiedWork* work, bool* stopped) {
   const std::vector<double> levels = parse_levels(levels_text);
-  const BandRun run = run_bands(mech, criterion, levels, tolerance);
+  const BandRun run = run_bands(mech, criterion, levels, tolerance, work);
+  if (stopped) *stopped = run.stopped;
   return svg ? svg_figure(mech, run) : curves_csv(run, levels);
 }
 
-Json criteria_area_report(const io::MechanismFile& mech, double tolerance) {
+Json criteria_area_report(const io::MechanismFile& mech, double tolerance, const CertifiedWork* work) {
   const auto limits = criteria::file_limits(mech);
   certified::LevelSetOptions o;
   o.relative_tolerance = tolerance;
-  const criteria::LimitedWorkspace lw = criteria::limited_workspace(mech, limits, o);
+  const criteria::LimitedWorkspace lw = criteria::limited_workspace(mech, limits, work ? work->options(o) : o);
   Json report;
   report["name"] = mech.name;
   report["mechanism"] = mech.mechanism;
@@ -216,6 +233,8 @@ Json criteria_area_report(const io::MechanismFile& mech, double tolerance) {
   report["undecided_cells"] = lw.detail.undecided_cells;
   report["curve_points"] = lw.detail.curve_points;
   report["time_ms"] = lw.time_ms;
+  if (lw.detail.stopped && work) report["stopped"] = work->stopped_note();
+  if (!lw.note.empty()) report["note"] = lw.note;
   return report;
 }
 
@@ -224,6 +243,7 @@ void add_levels(CLI::App& app, std::vector<Command>& commands) {
   struct Args {
     std::string file, criterion, levels, svg, csv;
     double tolerance = 1e-6;
+    double max_time = 0.0;
     bool json = false;
   };
   auto a = std::make_shared<Args>();
@@ -234,11 +254,14 @@ void add_levels(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--svg", a->svg, "Write the band figure (SVG)");
   sub->add_option("--csv", a->csv, "Write the traced level curves (CSV: level, piece, x, y)");
   sub->add_flag("--json", a->json, "Print one JSON object");
+  add_max_time_option(sub, a->max_time);
   commands.push_back({sub, [a] {
     if (!(a->tolerance > 0.0 && a->tolerance < 1.0)) throw io::InputError("--tolerance: must be in (0, 1)");
     const io::MechanismFile mech = io::load_mechanism(a->file);
     const std::vector<double> levels = parse_levels(a->levels);
-    const BandRun run = run_bands(mech, a->criterion, levels, a->tolerance);
+    check_outputs({a->svg, a->csv});
+    const CertifiedWork work("levels", a->max_time);
+    const BandRun run = run_bands(mech, a->criterion, levels, a->tolerance, &work);
     Json j;
     j["name"] = mech.name;
     j["criterion"] = a->criterion;
@@ -247,18 +270,24 @@ void add_levels(CLI::App& app, std::vector<Command>& commands) {
     Json bands = Json::array();
     for (std::size_t k = 0; k < run.bands.size(); ++k) {
       const auto& b = run.bands[k];
-      bands.push_back({{"from", k == 0 ? Json(nullptr) : Json(b.lower_level)},
-                       {"to", b.upper_level},
-                       {"area_lower", b.area_lower},
-                       {"area_upper", b.area_upper},
-                       {"sublevel_area_lower", run.sub[k].region.area_lower},
-                       {"sublevel_area_upper", run.sub[k].region.area_upper}});
+      Json band{{"from", k == 0 ? Json(nullptr) : Json(b.lower_level)},
+                {"to", b.upper_level},
+                {"area_lower", b.area_lower},
+                {"area_upper", b.area_upper},
+                {"sublevel_area_lower", run.sub[k].region.area_lower},
+                {"sublevel_area_upper", run.sub[k].region.area_upper}};
+      if (k == 0) band["from_reason"] = "the first band has no lower level (everything up to `to`)";
+      bands.push_back(band);
     }
     j["bands"] = bands;
     j["method"] = "certified";
     j["time_ms"] = run.time_ms;
-    if (!a->svg.empty()) io::write_file_atomic(a->svg, svg_figure(mech, run));
-    if (!a->csv.empty()) io::write_file_atomic(a->csv, curves_csv(run, levels));
+    if (run.stopped) j["stopped"] = work.stopped_note();
+    if (!run.note.empty()) j["note"] = run.note;
+    std::vector<std::pair<std::string, std::string>> outputs;  // all or nothing
+    if (!a->svg.empty()) outputs.emplace_back(a->svg, svg_figure(mech, run));
+    if (!a->csv.empty()) outputs.emplace_back(a->csv, curves_csv(run, levels));
+    write_outputs(outputs);
     if (a->json) {
       print_json(j);
       return 0;
@@ -276,6 +305,8 @@ void add_levels(CLI::App& app, std::vector<Command>& commands) {
       std::printf("%-18s %-20.12g %-20.12g %-20.12g %-20.12g\n", band, run.bands[k].area_lower, run.bands[k].area_upper,
                   run.sub[k].region.area_lower, run.sub[k].region.area_upper);
     }
+    if (run.stopped) std::printf("STOPPED    %s\n", work.stopped_note().c_str());
+    if (!run.note.empty()) std::printf("note       %s\n", run.note.c_str());
     std::printf("time       %.1f ms\n", run.time_ms);
     return 0;
   }});

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 
 #include "detail/parallel.hpp"
@@ -20,6 +22,8 @@ using geometry::Region;
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
+// The most a retry four levels deeper is expected to narrow the bounds.
+constexpr double max_retry_gain = 64.0;
 
 Box make_box(double x0, double y0, double x1, double y1) {
   Box b;
@@ -480,6 +484,37 @@ void step_boxes(const CellTrace& t, const Box& cell, bool inner, std::vector<Box
   out.push_back(t.swapped ? make_box(lo, u0, hi, u1) : make_box(u0, lo, u1, hi));
 }
 
+// The bound on the work shared by the threads of one refinement: the deadline
+// (read every few cell tests) and the progress reports.
+class Budget {
+ public:
+  Budget(const LevelSetOptions& o, std::size_t leaves) : o_(o), leaves_(leaves) {}
+  // True once the deadline has passed (then for good).
+  bool expired() {
+    if (stopped_.load(std::memory_order_relaxed)) return true;
+    if (o_.deadline == std::chrono::steady_clock::time_point::max()) return false;
+    if ((ticks_.fetch_add(1, std::memory_order_relaxed) & 15u) != 0) return false;
+    if (std::chrono::steady_clock::now() < o_.deadline) return false;
+    stopped_.store(true, std::memory_order_relaxed);
+    return true;
+  }
+  bool stopped() const { return stopped_.load(std::memory_order_relaxed); }
+  void leaf_done() {
+    const std::size_t done = done_.fetch_add(1, std::memory_order_relaxed) + 1;
+    if (!o_.progress || leaves_ == 0) return;
+    std::unique_lock lock(report_, std::try_to_lock);
+    if (lock.owns_lock()) o_.progress(static_cast<double>(done) / static_cast<double>(leaves_));
+  }
+
+ private:
+  const LevelSetOptions& o_;
+  std::size_t leaves_;
+  std::atomic<bool> stopped_{false};
+  std::atomic<std::uint64_t> ticks_{0};
+  std::atomic<std::size_t> done_{0};
+  std::mutex report_;
+};
+
 struct LeafResult {
   std::vector<Box> inside;      // certified in S (by value)
   std::vector<Box> undecided;   // at the depth limit
@@ -488,7 +523,8 @@ struct LeafResult {
 };
 
 void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, const Box& cell, int depth,
-            int max_depth, double tau, bool trace, LeafResult& r) {
+            int max_depth, double tau, bool trace, Budget& budget, LeafResult& r) {
+  if (budget.expired()) { r.undecided.push_back(cell); return; }  // valid: undecided is always allowed
   ++r.tests;
   int active = -1;
   const CellState c = classify(cs, cell, &active);
@@ -506,10 +542,10 @@ void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, co
   }
   if (depth >= max_depth) { r.undecided.push_back(cell); return; }
   const double xm = 0.5 * (cell.min.x + cell.max.x), ym = 0.5 * (cell.min.y + cell.max.y);
-  refine(cs, within_test, make_box(cell.min.x, cell.min.y, xm, ym), depth + 1, max_depth, tau, trace, r);
-  refine(cs, within_test, make_box(xm, cell.min.y, cell.max.x, ym), depth + 1, max_depth, tau, trace, r);
-  refine(cs, within_test, make_box(cell.min.x, ym, xm, cell.max.y), depth + 1, max_depth, tau, trace, r);
-  refine(cs, within_test, make_box(xm, ym, cell.max.x, cell.max.y), depth + 1, max_depth, tau, trace, r);
+  refine(cs, within_test, make_box(cell.min.x, cell.min.y, xm, ym), depth + 1, max_depth, tau, trace, budget, r);
+  refine(cs, within_test, make_box(xm, cell.min.y, cell.max.x, ym), depth + 1, max_depth, tau, trace, budget, r);
+  refine(cs, within_test, make_box(cell.min.x, ym, xm, cell.max.y), depth + 1, max_depth, tau, trace, budget, r);
+  refine(cs, within_test, make_box(xm, ym, cell.max.x, cell.max.y), depth + 1, max_depth, tau, trace, budget, r);
 }
 
 // Splits merged runs of the cover back into its leaf cells.
@@ -560,9 +596,12 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
   detail::ParallelPolicy policy;
   policy.threads = options.threads;
   policy.serial_threshold = 8;
+  Budget budget(options, leaves.size());
   detail::for_each_block(policy, leaves.size(), leaves.size() * 64, [&](std::size_t k) {
-    refine(cs, within_test, leaves[k], 0, options.refine_depth, tau, options.trace, per_leaf[k]);
+    refine(cs, within_test, leaves[k], 0, options.refine_depth, tau, options.trace, budget, per_leaf[k]);
+    budget.leaf_done();
   });
+  result.stopped = budget.stopped();
 
   double in_lower = 0.0, traced_lower = 0.0, traced_upper = 0.0, undecided_in = 0.0;
   std::vector<Box> straddle_inside;
@@ -654,9 +693,17 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
     return r;
   }
   LevelSetResult r = run_once(constraints, within, within_test, options, 0.0);
-  // One retry with a tighter τ when the estimate of area or curve length was off.
+  // One retry with a tighter τ when the estimate of area or curve length was off
+  // (not when the deadline stopped the first run: the retry would stop too).
+  // A retry deeper (undecided cells dominate) costs ~16 times the first run
+  // and narrows an undecided band along a curve ~16 times: when the width is
+  // far beyond that reach (a level at the field's extreme, where the set
+  // degenerates to a curve and the interval tests cannot decide its cells at
+  // any depth), the first run's bounds are the answer.
   const double width = r.region.area_upper - r.region.area_lower;
-  if (options.trace && width > options.relative_tolerance * r.region.area_upper) {
+  const bool within_reach =
+      r.traced_width > 0.5 * width || width <= max_retry_gain * options.relative_tolerance * r.region.area_upper;
+  if (options.trace && !r.stopped && within_reach && width > options.relative_tolerance * r.region.area_upper) {
     LevelSetOptions o = options;
     double tau = 0.0;
     if (r.traced_width > 0.5 * width) {

@@ -195,6 +195,26 @@ struct ThreeRprTwist {
   }
 };
 
+// True when det A' vanishes to rounding at every position (the PAMINSA at
+// cos phi = R_p / R_b, docs/theory/three_dof.md): a cubic in (x, y) that is
+// below 1e-9 of Hadamard's bound (product of the row norms) at 25 points in
+// general position over `box` is the zero polynomial up to rounding.
+bool singular_everywhere(const ThreeRprTwist& t, const Box& box) {
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      const double x = box.min.x + box.width() * (i + 0.31831) / 5.0;
+      const double y = box.min.y + box.height() * (j + 0.57722) / 5.0;
+      double bound = 1.0;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const double n = std::hypot(x - t.e[k].x, y - t.e[k].y);
+        bound *= n * std::sqrt(1.0 + t.c[k].x * t.c[k].x + t.c[k].y * t.c[k].y);
+      }
+      if (!(std::abs(t.parts<double>(x, y).det) <= 1e-9 * bound)) return false;
+    }
+  }
+  return true;
+}
+
 // ---------------------------------------------------------------------------
 // Biglide velocity ratio V_i / V_y = |∂q_i/∂y| ([Strutynskyi] fig. 8) for the
 // paper's branches b_1 = b_2 = -1 (eq. 5-8), docs/theory/biglide.md:
@@ -298,6 +318,7 @@ CriterionField five_bar_pressure_angle(const mechanisms::FiveBar& mechanism) {
   CriterionField c;
   c.name = "pressure_angle";
   c.unit = "deg";
+  c.threshold_max = 90.0;
   c.key = "five_bar.cos2eps";
   c.surrogate = std::make_shared<certified::TemplateField<FiveBarCosEps>>(impl);
   // α <= α_max  <=>  |cos ε| <= sin α_max  <=>  cos²ε <= sin²α_max.
@@ -332,6 +353,7 @@ CriterionField five_bar_reaction(const mechanisms::FiveBar& mechanism, double fo
   CriterionField c = five_bar_pressure_angle(mechanism);
   c.name = "reaction";
   c.unit = "N";
+  c.threshold_max = std::numeric_limits<double>::infinity();
   // R = f / |sin ε| <= R_max  <=>  cos²ε <= 1 - (f / R_max)² (docs/theory/five_bar.md).
   c.level = [force_N](double r_max) {
     if (!(r_max > 0.0)) return -1.0;
@@ -385,6 +407,7 @@ CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, i
   CriterionField c;
   c.name = "pressure_angle";
   c.unit = "deg";
+  c.threshold_max = 90.0;
   c.key = "three_rpr.vb2_" + std::to_string(leg);
   c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
   // [Briot]: cos α_i = |r_i . v_i| / |v_i| = 1 / |v_i|  =>  α_i <= α  <=>  |v_i|² <= 1 / cos²α.
@@ -449,6 +472,15 @@ std::vector<CriterionField> fields_for(const io::MechanismFile& file, const std:
     // The platform stays in the assembly mode of the workspace's centre (it
     // cannot cross the type-2 singularity, [Briot] fig. 12's dashed curve).
     const geometry::Box b = rpr->bounds();
+    if (singular_everywhere(ThreeRprTwist(*rpr, 0, 2, mechanisms::Load{}), b)) {
+      // Reactions and pressure angles are infinite at every position: every
+      // sub-level set is empty, known without refining anything.
+      for (auto& f : out) {
+        f.nowhere = "the 3-RPR is type-2 singular at every position at this orientation (cos phi = R_p / R_b): " +
+                    f.name + " is infinite everywhere";
+      }
+      return out;
+    }
     out.push_back(three_rpr_assembly_mode(*rpr, {0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)}));
     return out;
   }
@@ -531,8 +563,15 @@ LimitedWorkspace limited_workspace(const io::MechanismFile& file, const std::vec
       }
     }
   }
+  std::string nowhere;
+  for (const auto& [key, entry] : by_key) {
+    if (nowhere.empty()) nowhere = entry.first.nowhere;
+  }
   if (by_key.empty()) {
     out.region = certified::from_exact(within);
+  } else if (!nowhere.empty()) {
+    out.region = certified::from_exact(geometry::Region{});
+    out.note = nowhere;
   } else {
     std::vector<certified::Constraint> cs;
     certified::WithinTest within_test;

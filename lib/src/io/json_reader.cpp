@@ -2,8 +2,74 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 namespace pkmws::io::detail {
+
+nlohmann::json parse_json_text(const std::string& text) {
+  // The callback sees every event of nlohmann's (iterative) parser; a stack of
+  // open containers gives each error its path and each object its key set.
+  struct Open {
+    bool array = false;
+    std::size_t index = 0;  // arrays: the element being read
+    std::string key;        // objects: the member being read
+    std::set<std::string> keys;
+  };
+  std::vector<Open> open;
+  auto path = [&open](const std::string& last_key) {
+    std::string p;
+    for (std::size_t i = 0; i < open.size(); ++i) {
+      const bool top = i + 1 == open.size();
+      if (open[i].array) {
+        p += "[" + std::to_string(open[i].index) + "]";
+      } else {
+        p += (p.empty() ? "" : ".") + (top && !last_key.empty() ? last_key : open[i].key);
+      }
+    }
+    return p.empty() ? std::string("document") : p;
+  };
+  auto element_done = [&open] {
+    if (!open.empty() && open.back().array) ++open.back().index;
+  };
+  using Event = nlohmann::json::parse_event_t;
+  auto callback = [&](int /*depth*/, Event event, nlohmann::json& parsed) {
+    switch (event) {
+      case Event::object_start:
+      case Event::array_start:
+        if (open.size() >= max_json_depth) {
+          std::string where = path("");
+          if (where.size() > 60) where = where.substr(0, 28) + "..." + where.substr(where.size() - 28);
+          throw InputError(where + ": nested deeper than " + std::to_string(max_json_depth) +
+                           " levels of arrays and objects");
+        }
+        open.push_back({event == Event::array_start, 0, {}, {}});
+        break;
+      case Event::key: {
+        std::string k = parsed.get<std::string>();
+        if (!open.back().keys.insert(k).second) throw InputError(path(k) + ": duplicate key");
+        open.back().key = std::move(k);
+        break;
+      }
+      case Event::object_end:
+      case Event::array_end:
+        open.pop_back();
+        element_done();
+        break;
+      case Event::value:
+        element_done();
+        break;
+    }
+    return true;
+  };
+  try {
+    return nlohmann::json::parse(text, callback);
+  } catch (const nlohmann::json::exception& e) {  // syntax errors, numbers out of range
+    // e.what() is "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
+    const std::string what = e.what();
+    const auto pos = what.find("] ");
+    throw InputError("malformed JSON: " + (pos == std::string::npos ? what : what.substr(pos + 2)));
+  }
+}
 
 JsonReader::JsonReader(const nlohmann::json& object, std::string path)
     : object_(object), path_(std::move(path)) {

@@ -18,6 +18,17 @@
 
 namespace pkmws::io::detail {
 
+/// The deepest nesting of arrays and objects a mechanism file may have (the
+/// format needs a handful of levels; deeper input is refused before it is built).
+inline constexpr std::size_t max_json_depth = 64;
+
+/// Parses a JSON text strictly: a duplicate key in an object is an error naming
+/// the key's path ("legs[1].rod_length: duplicate key"), nesting deeper than
+/// max_json_depth is an error naming where, and syntax errors give line and
+/// column. Throws InputError (without the file's name). The parse is
+/// iterative, so no input can exhaust the stack.
+nlohmann::json parse_json_text(const std::string& text);
+
 /// "field[i]": the path of an array element in messages.
 inline std::string item(const std::string& field, std::size_t i) { return field + "[" + std::to_string(i) + "]"; }
 

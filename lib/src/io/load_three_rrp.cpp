@@ -1,8 +1,8 @@
 // three_rrp / three_prp files (docs/format.md): base [[x, y] x 3] (O_i), platform
 // [[x, y] x 3] (B_1, B_2, B_3 in the platform frame, counter-clockwise; the
 // slider of chain i runs on side B_i B_{i+1}); three_rrp: crank_lengths [3],
-// optional crank_limits_deg [[min, max] | null x 3]; three_prp: directions_deg
-// [3], optional strokes [[min, max] | null x 3]; optional orientation_deg (the
+// optional crank_limits_deg [[min, max] x 3]; three_prp: directions_deg
+// [3], optional strokes [[min, max] x 3]; optional orientation_deg (the
 // constant orientation of the workspace, default 0). Lengths in the file's unit.
 #include <cmath>
 #include <numbers>
@@ -27,17 +27,21 @@ void check_points(const JsonReader& r, const std::string& key, const std::vector
   }
 }
 
-// [[min, max] | null x 3]; `angles`: degrees converted to radians, span <= 360.
+// [[min, max] x 3]; `angles`: degrees converted to radians, span <= 360. A null
+// entry is refused (it read as "no limit" without saying so); a chain without
+// limits is a file without the key.
 std::array<std::optional<std::array<double, 2>>, 3> read_ranges(JsonReader& r, const std::string& key, bool angles) {
   std::array<std::optional<std::array<double, 2>>, 3> out;
   if (!r.has(key)) return out;
   const auto& v = r.raw(key);
   const std::string f = r.field(key);
-  if (!v.is_array() || v.size() != 3) throw InputError(f + ": expected three entries [min, max] or null, one per chain");
+  if (!v.is_array() || v.size() != 3) throw InputError(f + ": expected three entries [min, max], one per chain");
   for (std::size_t i = 0; i < 3; ++i) {
     const std::string where = item(f, i);
-    if (v[i].is_null()) continue;
-    if (!v[i].is_array() || v[i].size() != 2) throw InputError(where + ": expected [min, max] or null");
+    if (v[i].is_null()) {
+      throw InputError(where + ": expected [min, max], got null (omit `" + key + "` for chains without limits)");
+    }
+    if (!v[i].is_array() || v[i].size() != 2) throw InputError(where + ": expected [min, max]");
     const double lo = JsonReader::as_number(v[i][0], where + "[0]"), hi = JsonReader::as_number(v[i][1], where + "[1]");
     if (!(lo < hi)) throw InputError(where + ": expected [min, max] with min < max");
     if (angles && hi - lo > 360.0) throw InputError(where + ": the range must not exceed 360 degrees");

@@ -136,13 +136,9 @@ MechanismFile load_mechanism(const std::filesystem::path& path) {
   buffer << in.rdbuf();
   nlohmann::json document;
   try {
-    document = nlohmann::json::parse(buffer.str());
-  } catch (const nlohmann::json::exception& e) {  // parse errors, numbers out of range
-    // e.what() is "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
-    std::string what = e.what();
-    const auto pos = what.find("] ");
-    throw InputError(path.string() + ": malformed JSON: " +
-                     (pos == std::string::npos ? what : what.substr(pos + 2)));
+    document = detail::parse_json_text(buffer.str());
+  } catch (const InputError& e) {
+    throw InputError(path.string() + ": " + e.what());
   }
   try {
     return parse_mechanism(document, path.string());

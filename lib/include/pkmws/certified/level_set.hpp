@@ -17,7 +17,9 @@
 // Lengths in the field's unit, areas in unit².
 #pragma once
 
+#include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -66,6 +68,13 @@ struct LevelSetOptions {
   bool build_regions = false;
   /// Trace curves (layer b); false gives the pure cell baseline (layer a).
   bool trace = true;
+  /// A bound on the work: past this instant no cell is split or traced any
+  /// more; the cells not yet decided stay undecided, so the bounds remain
+  /// valid, only wider (LevelSetResult::stopped says so). Default: no bound.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  /// Called now and then with the fraction of the refinement done (0..1), from
+  /// one thread at a time (any thread). Empty: no reports.
+  std::function<void(double fraction)> progress;
 };
 
 /// A piece of the traced level curve: points on F = level (to a few ulps).
@@ -81,6 +90,9 @@ struct LevelSetResult {
   std::uint64_t undecided_cells = 0;   // cells left undecided at the depth limit
   std::uint64_t curve_points = 0;      // certified root brackets computed
   std::uint64_t cell_tests = 0;
+  /// The deadline of the options passed before the work was done: the bounds
+  /// are valid but may be wider than the tolerance asked for.
+  bool stopped = false;
   double undecided_area = 0.0;         // part of the width from undecided cells
   double traced_width = 0.0;           // part of the width from traced cells
   double tolerance_per_length = 0.0;   // τ used (area per unit curve length)

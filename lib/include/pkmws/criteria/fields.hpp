@@ -18,6 +18,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,10 +41,17 @@ struct CriterionField {
   std::shared_ptr<const certified::ScalarField> surrogate;
   /// Criterion threshold -> surrogate level (non-decreasing).
   std::function<double(double)> level;
+  /// The thresholds that mean something: the open interval (threshold_min,
+  /// threshold_max) (pressure angles (0, 90) deg; reactions and ratios > 0).
+  double threshold_min = 0.0;
+  double threshold_max = std::numeric_limits<double>::infinity();
   /// The criterion itself at a point (NaN where undefined, +inf at a singularity).
   std::function<double(geometry::Point)> value;
   /// Conservative test box ⊆ workspace (for cells that need no exact clipping).
   certified::WithinTest within_test;
+  /// Non-empty when the criterion is infinite (or undefined) at every point,
+  /// with the reason: every sub-level set is empty, nothing needs refining.
+  std::string nowhere;
 };
 
 /// Five-bar (any link lengths, cranks without limits): α in degrees.
@@ -84,6 +92,8 @@ struct LimitedWorkspace {
   std::vector<certified::CurvePiece> curves;
   certified::LevelSetResult detail;      // pieces and statistics (region and curves moved out)
   double time_ms = 0.0;
+  /// Why the region is empty without any refinement (a field's `nowhere`), or "".
+  std::string note;
 };
 /// The workspace of `file` limited by `limits` (same surrogate: the stricter
 /// level; several surrogates: one certified intersection of sub-level sets).

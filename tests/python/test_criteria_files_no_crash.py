@@ -1,0 +1,21 @@
+"""The crash of issue 11 (12 of the 23 bundled criteria files died in
+export/area: a stack overflow in CGAL's lazy evaluation of a polygon's area,
+fixed in polygon_region) stays fixed, for every bundled criteria file and the
+degenerate valid files of the fuzz corpus. Heavy (minutes under
+AddressSanitizer): labelled `heavy`, not in `make sanitize`."""
+from test_reliability import DATASET, SOURCE_DIR, pkmws, refused
+
+
+def test_bundled_and_degenerate_criteria_files_do_not_crash(tmp_path):
+    # Crashed in export/area (stack overflow in CGAL's lazy evaluation of the
+    # polygon area): every bundled criteria file and the degenerate valid
+    # ones of the fuzz corpus. Bounded by --max-time: a result (maybe labelled
+    # `stopped`) or one line, never a signal.
+    files = [p for p in sorted(DATASET.glob("*.json")) if '"criteria"' in p.read_text()]
+    files += sorted((SOURCE_DIR / "tests/fuzz/corpus").glob("three_rpr_*.json"))
+    assert len(files) >= 23 + 4
+    for f in files:
+        r = pkmws("export", f, "-f", "geojson", "-o", tmp_path / "x.geojson", "--max-time", "30", timeout=180)
+        assert r.returncode in (0, 2), (f, r.stderr)
+        if r.returncode == 2:
+            refused(r, "--max-time")
