@@ -308,6 +308,65 @@ struct RVertex {
   bool exact;         // a curve's end (kept in preference to polyline points)
 };
 
+// Where two curves meet tangentially with the region between them (a cusp,
+// e.g. a crank-limited five-bar's pinch or a hole tangent internally), no
+// one-sided polyline can reach the tip: the tangent pieces of the concave
+// curve run along the common tangent, outside the region and across the
+// convex curve's chords. The tip is cut at the first crossing of the two
+// polylines; what remains is on the right side of both curves.
+bool crossing(Point a, Point b, Point c, Point d, Point& q) {
+  const Point r = b - a, s = d - c;
+  const double den = cross(r, s);
+  if (den == 0.0) return false;
+  const double t = cross(c - a, s) / den, u = cross(c - a, r) / den;
+  if (!(t > 0.0 && t < 1.0 && u > 0.0 && u < 1.0)) return false;
+  q = a + t * r;
+  return true;
+}
+
+void cut_cusps(std::vector<RVertex>& v) {
+  constexpr std::size_t k = 4;  // edges looked at on either side of a curve's end
+  const std::size_t n = v.size();
+  if (n < 4) return;
+  std::vector<char> drop(n, 0);
+  std::vector<std::pair<std::size_t, Point>> replace;  // vertex index -> crossing point
+  for (std::size_t p = 0; p < n; ++p) {
+    if (!v[p].exact) continue;
+    const std::size_t prev_curve = v[(p + n - 1) % n].curve, next_curve = v[p].curve;
+    if (prev_curve == next_curve) continue;
+    bool done = false;
+    // e_i = (v[p-i], v[p-i+1]) on the previous curve, f_j = (v[p+j-1], v[p+j]) on the next one.
+    for (std::size_t i = 1; i <= k && !done; ++i) {
+      if (v[(p + n - i) % n].curve != prev_curve) break;
+      for (std::size_t j = 1; j <= k && !done; ++j) {
+        if (i == 1 && j == 1) continue;
+        if (v[(p + j - 1) % n].curve != next_curve || i + j >= n) break;
+        Point q;
+        if (crossing(v[(p + n - i) % n].p, v[(p + n - i + 1) % n].p, v[(p + j - 1) % n].p, v[(p + j) % n].p, q)) {
+          // Keep v[p-i], then q, then v[p+j]: drop the vertices between.
+          for (std::size_t m = p + n - i + 1; m < p + n + j; ++m) drop[m % n] = 1;
+          replace.emplace_back((p + n - i + 1) % n, q);
+          done = true;
+        }
+      }
+    }
+  }
+  if (replace.empty()) return;
+  for (const auto& [idx, q] : replace) drop[idx] = 2;
+  std::vector<RVertex> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (drop[i] == 1) continue;
+    if (drop[i] == 2) {
+      for (const auto& [idx, q] : replace) {
+        if (idx == i) out.push_back({q, v[i].curve, false});
+      }
+      continue;
+    }
+    out.push_back(v[i]);
+  }
+  v.swap(out);
+}
+
 // The rings of one loop: its polyline with the curves' ids; vertices within
 // `snap` of their predecessor merged; spikes (an edge going straight back
 // along the previous one, e.g. where tangent polylines of two tangent circles
@@ -336,6 +395,7 @@ void loop_rings(const Loop& loop, std::size_t first_id, const std::vector<double
     if (v.back().exact && !v.front().exact) v.front().p = v.back().p, v.front().exact = true;
     v.pop_back();
   }
+  if (a != geometry::Approximation::chords) cut_cusps(v);
   // Spikes, repeatedly (removing one may expose another).
   for (bool changed = true; changed && v.size() >= 3;) {
     changed = false;
