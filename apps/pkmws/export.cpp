@@ -8,6 +8,12 @@
 
 namespace pkmws::cli {
 
+namespace {
+// Relative bound width of the criteria-limited regions exported (their
+// enclosures are built at cell resolution, so a finer width buys little).
+constexpr double kLimitedTolerance = 1e-4;
+}  // namespace
+
 void add_export(CLI::App& app, std::vector<Command>& commands) {
   auto* sub = app.add_subcommand("export", "Write the workspace boundary (svg, dxf, wkt, geojson, csv)");
   struct Args {
@@ -15,7 +21,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     double tolerance = 0.0;
     bool bare = false;
     bool real = false;
-    std::string bound = "outer";
+    std::string bound;
     std::string criterion, levels;
     double max_time = 0.0;
   };
@@ -23,24 +29,28 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("FILE", a->file, "Mechanism file (JSON)")->required();
   sub->add_option("--format,-f", a->format, "svg | dxf | wkt | geojson | csv")->required();
   sub->add_option("-o,--output", a->out, "Output file")->required();
-  sub->add_option("--tolerance", a->tolerance,
-                  "Max deviation of polylines (wkt, geojson) in the file's unit; "
-                  "default 1e-6 of the bounding-box diagonal");
+  auto* tolerance_option = sub->add_option(
+      "--tolerance", a->tolerance,
+      "Max deviation of polylines (wkt, geojson) in the file's unit; default 1e-6 of the bounding-box "
+      "diagonal; refused below 1e-12 of the region's size (double precision), above a tenth of its "
+      "diagonal, or when the polygons would exceed 2e6 vertices");
   sub->add_flag("--bare", a->bare, "svg: the boundary only, without axes and mechanism");
   sub->add_flag("--real", a->real,
                 "Files with bodies: export the real workspace's inner enclosure (certainly reachable "
                 "without collision) instead of the computed workspace");
   sub->add_option("--bound", a->bound,
                   "Certified workspaces (boundary not made of arcs and segments, e.g. the real-scheme "
-                  "biglide, or files with criteria limits): export the outer enclosure (every point of "
-                  "the region, default) or the inner one (only points of the region)")
+                  "biglide, files with criteria limits, --real): export the outer enclosure (every point "
+                  "of the region; default, --real: inner) or the inner one (only points of the region); "
+                  "wkt and csv, which carry no metadata, need it explicitly. WKT/GeoJSON polygons lie "
+                  "inside (inner) or around (outer) the enclosure")
       ->check(CLI::IsMember({"inner", "outer"}));
   sub->add_option("--criterion", a->criterion,
                   "With --levels: export the bands of a criterion (pressure_angle, reaction, velocity_ratio) "
                   "instead of the workspace: svg = band figure, csv = traced level curves");
   sub->add_option("--levels", a->levels, "Increasing thresholds of --criterion, e.g. 20,40,60,80");
   add_max_time_option(sub, a->max_time);
-  commands.push_back({sub, [a] {
+  commands.push_back({sub, [a, tolerance_option] {
     const io::ExportFormat format = io::parse_export_format(a->format);
     check_outputs({a->out});
     // Certified regions (criteria limits, bands): a bound stops the work with
@@ -62,8 +72,9 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       io::write_file_atomic(a->out, content);
       return 0;
     }
-    if (a->tolerance < 0.0 || !std::isfinite(a->tolerance)) {
-      throw io::InputError("--tolerance: must be a positive length");
+    const bool tolerance_given = tolerance_option->count() > 0;
+    if (tolerance_given && !(a->tolerance > 0.0 && std::isfinite(a->tolerance))) {
+      throw io::InputError("--tolerance: must be a positive finite length");
     }
     const io::MechanismFile mech = io::load_mechanism(a->file);
     // With criteria limits ([Briot] figs. 10, 13): the certified limited
@@ -73,7 +84,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     certified::CertifiedRegion enclosure;
     if (limited) {
       certified::LevelSetOptions lo;
-      lo.relative_tolerance = 1e-4;
+      lo.relative_tolerance = kLimitedTolerance;
       lo.build_regions = true;
       const auto lw = criteria::limited_workspace(mech, criteria::file_limits(mech), work.options(lo));
       if (lw.detail.stopped) refuse_stopped();
@@ -86,18 +97,41 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     } else {
       enclosure = workspace_enclosure_of(mech);
     }
-    geometry::Region region = enclosure.exact || a->bound == "outer" ? enclosure.outer : enclosure.inner;
-    if (region.empty()) {
-      throw io::InputError(a->file + ": the workspace is empty (impossible geometry): nothing to export");
+    if (a->real && !mech.bodies) {
+      throw io::InputError(a->file + ": --real needs `bodies` in the file (docs/format.md (bodies))");
     }
-    if (a->real) {
-      if (!mech.bodies) throw io::InputError(a->file + ": --real needs `bodies` in the file (docs/format.md (bodies))");
-      region = real_workspace_of(mech, region, 7).real.inner;
-      if (region.empty()) throw io::InputError(a->file + ": the real workspace is empty: nothing to export");
+    // Which enclosure: stated in GeoJSON, DXF and SVG; WKT and CSV carry no
+    // metadata, so a certified region needs --bound there.
+    const bool certified = a->real || !enclosure.exact;
+    const bool boundary_only = format != io::ExportFormat::svg || a->bare;
+    if (certified && boundary_only && a->bound.empty() &&
+        (format == io::ExportFormat::wkt || format == io::ExportFormat::csv)) {
+      throw io::InputError(std::string("--bound: ") + (a->real ? "the real workspace" : "this workspace") +
+                           " is certified, not exact, and " + std::string(io::format_name(format)) +
+                           " has no metadata to say which enclosure it holds: give --bound inner or --bound outer");
+    }
+    const std::string bound = !a->bound.empty() ? a->bound : a->real ? "inner" : "outer";
+    geometry::Region region = enclosure.exact || bound == "outer" ? enclosure.outer : enclosure.inner;
+    if (enclosure.outer.empty()) {
+      throw io::InputError(a->file + ": the workspace is empty (impossible geometry): nothing to export");
     }
     io::ExportOptions options;
     options.units = mech.units;
-    options.tolerance = a->tolerance;
+    options.tolerance = tolerance_given ? a->tolerance : 0.0;
+    if (!enclosure.exact) {
+      options.bound = bound == "inner" ? io::Bound::inner : io::Bound::outer;
+      options.area_lower = enclosure.area_lower;
+      options.area_upper = enclosure.area_upper;
+    }
+    if (a->real) {
+      // Real = reachable − interference: an enclosure even when reachable is exact.
+      const auto real = real_workspace_of(mech, region, 7).real;
+      region = bound == "inner" ? real.inner : real.outer;
+      options.bound = bound == "inner" ? io::Bound::inner : io::Bound::outer;
+      options.area_lower = real.area_lower;
+      options.area_upper = real.area_upper;
+      if (real.outer.empty()) throw io::InputError(a->file + ": the real workspace is empty: nothing to export");
+    }
     std::string content;
     switch (format) {
       case io::ExportFormat::svg:

@@ -122,7 +122,12 @@ TEST(BodiesCli, ExportDrawsInterferenceAndRealOutline) {
   EXPECT_NE(svg.find("fill-opacity=\"0.4"), std::string::npos);
   // --real: the real workspace's inner enclosure, e.g. as WKT; needs bodies.
   const fs::path wkt = fs::temp_directory_path() / ("pkmws-bodies-real-" + std::to_string(::getpid()) + ".wkt");
+  // WKT has no metadata: the enclosure is named on the command line.
   auto w = run("export " + dataset("machine_moma_m5") + " -f wkt --real -o " + wkt.string());
+  EXPECT_EQ(w.status, 2);
+  EXPECT_NE(w.err.find("--bound"), std::string::npos);
+  EXPECT_FALSE(fs::exists(wkt));
+  w = run("export " + dataset("machine_moma_m5") + " -f wkt --real --bound inner -o " + wkt.string());
   ASSERT_EQ(w.status, 0) << w.err;
   EXPECT_EQ(slurp(wkt).rfind("MULTIPOLYGON", 0), 0u);
   fs::remove(wkt);

@@ -1,8 +1,12 @@
 // Double-precision geometry of boundary curves: sweep, length, Green's-theorem
 // area, polylines at a max deviation, bounding boxes. No CGAL here.
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
+#include "pkmws/geometry/polyline.hpp"
 #include "pkmws/geometry/types.hpp"
 
 namespace pkmws::geometry {
@@ -87,22 +91,72 @@ Box Loop::bbox() const {
   return b;
 }
 
-std::vector<Point> Loop::polyline(double tolerance) const {
+bool tangent_polyline(const Curve& curve, Approximation approximation) {
+  return curve.kind == Curve::Kind::arc && approximation != Approximation::chords &&
+         curve.ccw == (approximation == Approximation::outside);
+}
+
+double polyline_pieces(const Curve& curve, double tolerance, Approximation approximation) {
+  if (!(tolerance > 0.0)) throw std::invalid_argument("polyline tolerance must be positive");
+  if (curve.kind != Curve::Kind::arc) return 1.0;
+  constexpr double saturated = 9007199254740992.0;  // 2^53
+  const double s = std::abs(curve.sweep());
+  const double rho = tolerance / curve.radius;
+  double h = 0.0;
+  if (tangent_polyline(curve, approximation)) {
+    // Tangents at the ends of a piece of angle h meet r / cos(h/2) from the
+    // centre: deviation r (sec(h/2) - 1) <= tolerance iff
+    // 1 - cos(h/2) = 2 sin^2(h/4) <= rho / (1 + rho); pieces of at most pi/2.
+    h = std::min(4.0 * std::asin(std::sqrt(0.5 * rho / (1.0 + rho))), std::numbers::pi / 2.0);
+  } else {
+    // A chord of angle h deviates r (1 - cos(h/2)) = 2 r sin^2(h/4) from its
+    // arc (written with the sine: 1 - rho rounds to 1 for rho < 1e-16).
+    h = 4.0 * std::asin(std::sqrt(0.5 * std::min(rho, 1.0)));
+  }
+  double n = h > 0.0 ? std::ceil(s / h) : saturated;
+  if (!(n < saturated)) n = saturated;
+  if (!tangent_polyline(curve, approximation) && s > std::numbers::pi) n = std::max(n, 3.0);  // keep a full circle a polygon
+  return std::max(n, 1.0);
+}
+
+void append_polyline(const Curve& curve, double tolerance, Approximation approximation,
+                     std::vector<Point>& out) {
+  out.push_back(curve.source);
+  if (curve.kind != Curve::Kind::arc) return;
+  const double n = polyline_pieces(curve, tolerance, approximation);
+  const double s = curve.sweep();
+  if (tangent_polyline(curve, approximation)) {
+    // An arc whose whole chord deviates less than the rounding of its
+    // coordinates gets no tangent vertex (it would duplicate its source).
+    const Point c = curve.center;
+    const double r = curve.radius;
+    const double sagitta = 2.0 * r * std::pow(std::sin(0.25 * s), 2);
+    const double rounding = 8.0 * std::numeric_limits<double>::epsilon() *
+                            (std::max(std::abs(c.x), std::abs(c.y)) + r);
+    if (sagitta <= rounding) return;
+    const double h = s / n;
+    const double a0 = angle_of(curve.source, c);
+    const double rt = r / std::cos(0.5 * h);
+    const auto count = static_cast<std::size_t>(n);
+    for (std::size_t k = 0; k < count; ++k) {
+      const double a = a0 + (static_cast<double>(k) + 0.5) * h;
+      out.push_back({c.x + rt * std::cos(a), c.y + rt * std::sin(a)});
+    }
+    return;
+  }
+  const auto count = static_cast<std::size_t>(n);
+  for (std::size_t k = 1; k < count; ++k) out.push_back(curve.at(static_cast<double>(k) / n));
+}
+
+std::vector<Point> polyline(const Loop& loop, double tolerance, Approximation approximation) {
   if (!(tolerance > 0.0)) throw std::invalid_argument("polyline tolerance must be positive");
   std::vector<Point> out;
-  for (const Curve& c : curves) {
-    out.push_back(c.source);
-    if (c.kind != Curve::Kind::arc) continue;
-    // A chord of angle h deviates r (1 - cos(h/2)) from its arc: n pieces
-    // with h = sweep / n keep the deviation <= tolerance (docs/theory/regions.md).
-    const double ratio = std::min(tolerance / c.radius, 1.0);
-    const double max_step = ratio > 0.0 ? 2.0 * std::acos(1.0 - ratio) : 0.0;
-    const double s = std::abs(c.sweep());
-    std::size_t n = static_cast<std::size_t>(std::ceil(s / max_step));
-    n = std::max<std::size_t>(n, s > std::numbers::pi ? 3 : 1);  // keep a full circle a polygon
-    for (std::size_t k = 1; k < n; ++k) out.push_back(c.at(static_cast<double>(k) / static_cast<double>(n)));
-  }
+  for (const Curve& c : loop.curves) append_polyline(c, tolerance, approximation, out);
   return out;
+}
+
+std::vector<Point> Loop::polyline(double tolerance) const {
+  return geometry::polyline(*this, tolerance, Approximation::chords);
 }
 
 }  // namespace pkmws::geometry
