@@ -14,6 +14,10 @@
 #include "pkmws/geometry/region.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 
+namespace pkmws::criteria {
+struct LimitedWorkspace;  // pkmws/criteria/fields.hpp
+}
+
 namespace pkmws::cli {
 
 using Json = nlohmann::json;
@@ -34,8 +38,10 @@ void add_grid(CLI::App& app, std::vector<Command>& commands);     // grid baseli
 void add_compare(CLI::App& app, std::vector<Command>& commands);  // exact vs grid
 void add_levels(CLI::App& app, std::vector<Command>& commands);   // criterion bands (levels.cpp)
 /// `pkmws area` for a file with `criteria` limits: certified area bounds of the
-/// limited workspace (levels.cpp); `tolerance` relative to the area.
-Json criteria_area_report(const io::MechanismFile& mech, double tolerance);
+/// limited workspace (levels.cpp); `tolerance` relative to the area. The
+/// certified pieces behind it go to `*limited` when given (for figures).
+Json criteria_area_report(const io::MechanismFile& mech, double tolerance,
+                          criteria::LimitedWorkspace* limited = nullptr);
 /// What `pkmws levels` writes for a criterion at increasing levels "a,b,c":
 /// the band figure (svg) or the traced level curves (csv: level, piece, x, y).
 std::string bands_export(const io::MechanismFile& mech, const std::string& criterion, const std::string& levels,
