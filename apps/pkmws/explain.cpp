@@ -17,6 +17,14 @@ std::string pair_label(const std::string& a, const std::string& b, const std::st
   return kind == "link_angle" ? a + " ∠ " + b : a + " / " + b;
 }
 
+// Four significant digits without an exponent ("10410", "880.5", "0.02342").
+std::string sig4(double v) {
+  const int mag = v != 0.0 ? static_cast<int>(std::floor(std::log10(std::abs(v)))) : 0;
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*f", std::max(0, 3 - mag), v);
+  return buf;
+}
+
 const std::vector<std::string> kPalette = {"#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b",
                                            "#e377c2", "#17becf", "#bcbd22", "#7f7f7f", "#d62728"};
 
@@ -105,15 +113,10 @@ std::vector<io::FigureOptions::Overlay> real_workspace_overlays(const bodies::Re
     ov.stroke = "none";
     ov.css_class = "interference";
     ov.label = std::to_string(k + 1);
-    char buf[200];
-    if (i.region.exact) {
-      std::snprintf(buf, sizeof buf, "%s %s: %.4g %s", ov.label.c_str(), pair_label(i.a, i.b, i.kind).c_str(),
-                    i.region.area_lower, area_unit.c_str());
-    } else {
-      std::snprintf(buf, sizeof buf, "%s %s: %.4g\u2013%.4g %s", ov.label.c_str(), pair_label(i.a, i.b, i.kind).c_str(),
-                    i.region.area_lower, i.region.area_upper, area_unit.c_str());
-    }
-    ov.legend = buf;
+    ov.legend = ov.label + " " + pair_label(i.a, i.b, i.kind) + ": " +
+                (i.region.exact ? sig4(i.region.area_lower)
+                                : sig4(i.region.area_lower) + "\u2013" + sig4(i.region.area_upper)) +
+                " " + area_unit;
     ov.legend_rank = 2;
     out.push_back(std::move(ov));
     ++k;

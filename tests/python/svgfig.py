@@ -122,3 +122,37 @@ def path_area_model(root, d):
     """Area (model units²) of an even-odd path whose rings nest without crossing."""
     _, _, s = mapping(root)
     return abs(sum(ring_area(r) for r in path_rings(d))) / (s * s)
+
+
+def path_geometry(d, rule="evenodd"):
+    """The filled set of a path (px) as a shapely geometry: even-odd by
+    symmetric differences; nonzero for rings that do not cross (outer loops
+    one way, holes the other) as union(outer) - union(holes)."""
+    from shapely.geometry import Polygon
+    from shapely.ops import unary_union
+    rings = [r for r in path_rings(d) if len(r) >= 3]
+    polys = [(Polygon(r).buffer(0), ring_area(r)) for r in rings]
+    if rule == "evenodd":
+        g = Polygon()
+        for p, _ in polys:
+            g = g.symmetric_difference(p)
+        return g
+    sign = max(polys, key=lambda pa: abs(pa[1]))[1] > 0
+    outer = unary_union([p for p, a in polys if (a > 0) == sign])
+    holes = unary_union([p for p, a in polys if (a > 0) != sign])
+    return outer.difference(holes)
+
+
+def clip_path_d(root):
+    for cp in root.iter(NS + "clipPath"):
+        return cp.find(NS + "path").get("d")
+    return None
+
+
+def drawn_area_model(root, el):
+    """Area (model units²) of an overlay path as drawn: clipped to the clip path it names."""
+    _, _, s = mapping(root)
+    g = path_geometry(el.get("d"), el.get("fill-rule") or "nonzero")
+    if el.get("clip-path"):
+        g = g.intersection(path_geometry(clip_path_d(root), "evenodd"))
+    return g.area / (s * s)

@@ -162,8 +162,9 @@ def test_band_figure_is_traced_small_and_complete(tmp_path, how):
         assert lo != hi, t
         assert float(lo) <= float(hi)
     # the bands nest: the drawn areas increase with the level
-    areas = sorted(svgfig.path_area_model(root, b.get("d")) for b in bands)
-    assert areas[0] > 0.05
+    areas = [svgfig.drawn_area_model(root, b) for b in bands]  # painter's order: the largest first
+    assert areas == sorted(areas, reverse=True)
+    assert areas[-1] > 0.05
     assert "[Briot]" in svgfig.caption(root) and "seed" not in svg.read_text().lower()
     render(svg, tmp_path)
 
@@ -181,7 +182,7 @@ def test_limited_export_fills_the_certified_region(tmp_path):
     assert "inner bound" in cap
     assert abs(0.4155807344 - rep["area"]) > 0.1  # the limited area, not the reachable one
     (lim,) = svgfig.by_class(root, "limited", "path")
-    drawn = svgfig.path_area_model(root, lim.get("d"))
+    drawn = svgfig.drawn_area_model(root, lim)
     # the inner bound drawn: within the certified interval up to the drawing's rounding
     assert rep["area_lower"] * 0.995 <= drawn <= rep["area_upper"] * 1.001, (drawn, rep)
     render(svg, tmp_path)

@@ -91,8 +91,8 @@ std::string text_el(Point at, const std::string& text, const std::string& style)
 const std::string kGuideBand = "stroke=\"#d6d6d6\" stroke-width=\"9\" stroke-linecap=\"butt\"";
 const std::string kGuideLine = "stroke=\"#555555\" stroke-width=\"1.3\" stroke-dasharray=\"7 4\"";
 const std::string kLink = "stroke=\"#1f3a93\" stroke-width=\"4.5\" stroke-linecap=\"round\"";
-const std::string kPlatform = "fill=\"#c8d4f0\" fill-opacity=\"0.9\" stroke=\"#1f3a93\" stroke-width=\"2\" "
-                              "stroke-linejoin=\"round\"";
+// The platform outlined only: a small workspace under it stays visible.
+const std::string kPlatform = "fill=\"none\" stroke=\"#1f3a93\" stroke-width=\"2.5\" stroke-linejoin=\"round\"";
 const std::string kJoint = "fill=\"white\" stroke=\"black\" stroke-width=\"1.6\"";
 const std::string kSlider = "fill=\"#c8d4f0\" stroke=\"#1f3a93\" stroke-width=\"1.6\"";
 const std::string kSingular = "fill=\"none\" stroke=\"#0a7d2c\" stroke-width=\"1.6\" stroke-dasharray=\"5 3\"";
