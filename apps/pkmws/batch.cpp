@@ -1,7 +1,9 @@
 // pkmws batch FILES... --out DIR: the main job of `make demo`. For every
-// mechanism file: exact area, the paper-style SVG figure, and one row of a
-// summary table (DIR/summary.md, DIR/summary.json). Files without a planar
-// workspace (a lone Pi-joint) are listed with the reason instead.
+// mechanism file: what `pkmws area` reports (the same computation: criteria
+// files give their certified limited area, files with bodies add the real
+// workspace), the figure `pkmws export -f svg` draws, and one row of a summary
+// table (DIR/summary.md, DIR/summary.json). Files without a planar workspace
+// (a lone Pi-joint) are listed with the reason instead.
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -41,17 +43,15 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
     for (const auto& f : a->files) mechs.push_back(io::load_mechanism(f));
     Json rows = Json::array();
     std::string md =
-        "| file | name | mechanism | area | unit | components | time (ms) | figure | limited / real area |\n"
-        "|---|---|---|---:|---|---:|---:|---|---|\n";
+        "| file | name | mechanism | area | certified bounds | unit | method | components | compute time (ms) | figure "
+        "| limits / real workspace |\n"
+        "|---|---|---|---:|---|---|---|---:|---:|---|---|\n";
     for (const auto& mech : mechs) {
       const std::string stem = fs::path(mech.path).stem().string();
       Json row{{"file", mech.path}, {"name", mech.name}, {"mechanism", mech.mechanism}};
-      const auto start = std::chrono::steady_clock::now();
-      geometry::Region region;
-      certified::CertifiedRegion enclosure;
+      AreaResult result;
       try {
-        enclosure = mech.model->workspace_enclosure();
-        region = enclosure.exact ? enclosure.inner : enclosure.outer;
+        result = compute_area(mech, 7);
       } catch (const std::exception& e) {
         row["note"] = e.what();
         std::string links;
@@ -61,61 +61,47 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
           for (const auto& c : charts) links += " [" + c + "](" + c + ")";
         }
         rows.push_back(row);
-        md += "| " + stem + " | " + mech.name + " | " + mech.mechanism + " | – | | | | " +
-              std::string(e.what()) + links + " | |\n";
+        md += "| " + stem + " | " + mech.name + " | " + mech.mechanism + " | – | | | | | | " + std::string(e.what()) +
+              links + " | |\n";
         continue;
       }
-      const double area = enclosure.exact ? region.area() : enclosure.area_estimate();
-      const double time_ms = elapsed_ms(start);
-      const auto comps = region.components(io::effective_min_area(region, {}));
-      io::FigureOptions figure;
-      figure.title = mech.name;
-      figure.caption = "exact workspace area = " + fmt("%.10g", area) + " " + area_unit(mech);
-      if (!enclosure.exact) {
-        figure.caption = "certified workspace area in [" + fmt("%.10g", enclosure.area_lower) + ", " +
-                         fmt("%.10g", enclosure.area_upper) + "] " + area_unit(mech) + " (outer enclosure drawn)";
-        row["area_lower"] = enclosure.area_lower;
-        row["area_upper"] = enclosure.area_upper;
+      const Json& rep = result.report;
+      const double area = rep["area"], lo = rep["area_lower"], hi = rep["area_upper"];
+      const std::string method = rep["method"];
+      // The numbers of `pkmws area --json`, under the same names.
+      for (const char* key : {"area", "area_lower", "area_upper", "method", "time_ms", "criteria", "real_area",
+                              "real_area_lower", "real_area_upper", "real_method"}) {
+        if (rep.contains(key)) row[key] = rep[key];
       }
-      row["method"] = enclosure.method();
-      // What the file limits the workspace to: criteria (certified level sets,
-      // 1e-5 here to keep the batch quick; `pkmws area` aims at 1e-6) or bodies
-      // (the real workspace, certified). The area column stays the reachable one.
-      std::string limited;
-      geometry::Region pose_region = region;  // where the mechanism is drawn (a shared value, not a copy)
-      if (mech.criteria.any()) {
-        const Json c = criteria_area_report(mech, 1e-5);
-        row["limited_area_lower"] = c["area_lower"];
-        row["limited_area_upper"] = c["area_upper"];
-        row["limited_method"] = "certified";
-        limited = "criteria: [" + fmt("%.10g", c["area_lower"].get<double>()) + ", " +
-                  fmt("%.10g", c["area_upper"].get<double>()) + "] (certified)";
-        figure.caption += "; " + limited + " (pkmws export draws that region)";
-      } else if (mech.bodies) {
-        const auto real = real_workspace_of(mech, region, 7);
-        row["real_area_lower"] = real.real.area_lower;
-        row["real_area_upper"] = real.real.area_upper;
-        row["real_method"] = real.real.method();
-        limited = "real: [" + fmt("%.10g", real.real.area_lower) + ", " + fmt("%.10g", real.real.area_upper) + "] (" +
-                  real.real.method() + ")";
-        figure.overlays = real_workspace_overlays(real);
-        figure.caption += "; " + limited + ", black outline";
-        if (!real.real.inner.empty()) pose_region = real.real.inner;  // a collision-free pose
+      row["units"] = mech.units;
+      row["components"] = rep["components"].size();
+      std::string note;
+      if (result.limited) {
+        std::string limits;
+        for (const auto& c : rep["criteria"]) {
+          limits += (limits.empty() ? "" : ", ") + c["criterion"].get<std::string>() + " <= " +
+                    fmt("%g", c["threshold"].get<double>());
+        }
+        note = "limited by " + limits + " (reachable " + fmt("%.10g", criteria::criteria_domain(mech).area()) + ")";
+        row["components"] = nullptr;  // not enumerated for certified level sets
+      } else if (result.real) {
+        note = "real: " + io::interval_text(result.real->real.area_lower, result.real->real.area_upper, 10) + " (" +
+               result.real->real.method() + ")";
       }
       const std::string svg = stem + ".svg";
-      io::write_file_atomic(fs::path(a->out) / svg,
-                            io::workspace_figure(mech, region, sample_pose(mech, pose_region), figure));
-      row["area"] = area;
-      row["units"] = mech.units;
-      row["components"] = comps.size();
-      row["time_ms"] = time_ms;
+      io::write_file_atomic(fs::path(a->out) / svg, file_figure(mech, result));
       row["figure"] = svg;
       rows.push_back(row);
-      md += "| " + stem + " | " + mech.name + " | " + mech.mechanism + " | " + fmt("%.10g", area) +
-            " | " + area_unit(mech) + " | " + std::to_string(comps.size()) + " | " +
-            fmt("%.2f", time_ms) + " | [" + svg + "](" + svg + ") | " + limited + " |\n";
-      std::printf("%-34s %18.10g %s\n", stem.c_str(), area, area_unit(mech).c_str());
+      const std::string bounds = method == "exact" ? "exact" : io::interval_text(lo, hi, 10);
+      const std::string comps = result.limited ? "–" : std::to_string(rep["components"].size());
+      md += "| " + stem + " | " + mech.name + " | " + mech.mechanism + " | " + fmt("%.10g", area) + " | " + bounds +
+            " | " + area_unit(mech) + " | " + method + " | " + comps + " | " + fmt("%.1f", rep["time_ms"].get<double>()) +
+            " | [" + svg + "](" + svg + ") | " + note + " |\n";
+      std::printf("%-34s %18.10g %s  %s\n", stem.c_str(), area, area_unit(mech).c_str(),
+                  method == "exact" ? "exact" : ("certified " + io::interval_text(lo, hi, 10)).c_str());
     }
+    md += std::string("\ncompute time: ") + kComputeTimeMeaning +
+          " (the `time_ms` of `pkmws area --json`, one file at a time).\n";
     io::write_file_atomic(fs::path(a->out) / "summary.md", md);
     io::write_file_atomic(fs::path(a->out) / "summary.json", rows.dump(2) + "\n");
     std::size_t figures = 0;

@@ -15,6 +15,10 @@
 #include "pkmws/geometry/region.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 
+namespace pkmws::criteria {
+struct LimitedWorkspace;  // pkmws/criteria/fields.hpp
+}
+
 namespace pkmws::cli {
 
 using Json = nlohmann::json;
@@ -63,8 +67,10 @@ void add_max_time_option(CLI::App* sub, double& seconds);
 
 /// `pkmws area` for a file with `criteria` limits: certified area bounds of the
 /// limited workspace (levels.cpp); `tolerance` relative to the area. With
-/// `work`, bounded by its deadline (the report then has `stopped`).
-Json criteria_area_report(const io::MechanismFile& mech, double tolerance, const CertifiedWork* work = nullptr);
+/// `work`, bounded by its deadline (the report then has `stopped`). The
+/// certified pieces behind it go to `*limited` when given (for figures).
+Json criteria_area_report(const io::MechanismFile& mech, double tolerance, const CertifiedWork* work = nullptr,
+                          criteria::LimitedWorkspace* limited = nullptr);
 /// What `pkmws levels` writes for a criterion at increasing levels "a,b,c":
 /// the band figure (svg) or the traced level curves (csv: level, piece, x, y).
 /// With `work`, bounded by its deadline; `stopped` (if given) says whether it was reached.

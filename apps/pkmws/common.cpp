@@ -287,10 +287,12 @@ double precision_for(const geometry::Box& b) { return 1e-5 * std::max(b.width(),
 }  // namespace
 
 mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Region& region) {
+  // 3-DOF: the platform at the file's constant orientation (the workspace's).
+  const double phi = file.model->orientation();
   const auto comps = region.components();
   if (comps.empty()) {
     const auto b = file.model->bounds();
-    return {(b.min.x + b.max.x) / 2, (b.min.y + b.max.y) / 2, 0.0};
+    return {(b.min.x + b.max.x) / 2, (b.min.y + b.max.y) / 2, phi};
   }
   std::size_t k = 0;
   for (std::size_t i = 1; i < comps.size(); ++i) {
@@ -309,7 +311,7 @@ mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Regi
   }
   for (const auto& p : candidates) {
     if (!geometry::inside(c, p) || geometry::distance_to_boundary(c, p) < 0.05 * std::sqrt(c.area)) continue;
-    const mechanisms::Pose pose{p.x, p.y, 0.0};
+    const mechanisms::Pose pose{p.x, p.y, phi};
     try {
       const auto ev = file.model->evaluate(pose, {});
       if (!ev.empty() && ev.front().reachable && !ev.front().singular) return pose;
@@ -317,7 +319,7 @@ mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Regi
       // a mechanism without evaluate at this pose: try the next candidate
     }
   }
-  return {circle.center.x, circle.center.y, 0.0};
+  return {circle.center.x, circle.center.y, phi};
 }
 
 Json rectangle_json(const geometry::InscribedRectangle& r) {

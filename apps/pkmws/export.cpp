@@ -77,6 +77,12 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       throw io::InputError("--tolerance: must be a positive finite length");
     }
     const io::MechanismFile mech = io::load_mechanism(a->file);
+    if (format == io::ExportFormat::svg && !a->bare && !a->real) {
+      // The figure: what `pkmws area` computes, drawn as `pkmws batch` draws it
+      // (criteria files: the certified limited region; bodies: the real workspace).
+      io::write_file_atomic(a->out, file_figure(mech, compute_area(mech, 7)));
+      return 0;
+    }
     // With criteria limits ([Briot] figs. 10, 13): the certified limited
     // region, its enclosures built at cell resolution.
     const bool limited = mech.criteria.any() && !a->real;
@@ -138,45 +144,16 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
         if (a->bare) {
           content = io::to_svg(region, options);
         } else {
+          // --real: the real workspace's inner enclosure (the figure without --real draws it outlined).
           io::FigureOptions figure;
           figure.title = mech.name;
-          char caption[512];
-          std::snprintf(caption, sizeof caption, "exact workspace area = %.10g %s", region.area(),
-                        area_unit(mech).c_str());
-          if (!enclosure.exact) {
-            // Certain part filled, the undecided band between the enclosures hatched grey.
-            std::snprintf(caption, sizeof caption,
-                          "certified %s%s%s: %.10g <= area <= %.10g %s (filled: certainly inside; grey: "
-                          "undecided cells)",
-                          limited ? "workspace with " : "workspace", limited ? limited_caption.c_str() : "", "",
-                          enclosure.area_lower, enclosure.area_upper, area_unit(mech).c_str());
-            region = enclosure.inner;
-            io::FigureOptions::Overlay band;
-            band.region = enclosure.outer.subtract(enclosure.inner);
-            band.fill = "#7a7a7a";
-            band.fill_opacity = 0.8;
-            band.stroke = "none";
-            band.legend = "undecided (certified bounds)";
-            figure.overlays.push_back(band);
-          }
-          figure.caption = caption;
-          mechanisms::Pose pose = sample_pose(mech, region);
-          if (mech.bodies && !a->real) {
-            // docs/format.md (bodies): computed workspace (filled), interference regions shaded and
-            // labelled by pair, the real workspace outlined in black ([Vasilic] figs. 5-11).
-            const auto real = real_workspace_of(mech, region, 7);
-            figure.overlays = real_workspace_overlays(real);
-            std::snprintf(caption, sizeof caption,
-                          "computed workspace %.8g %s (filled); real workspace %.8g %s (%s, %.8g..%.8g; black outline)",
-                          region.area(), area_unit(mech).c_str(), real.real.area_estimate(), area_unit(mech).c_str(),
-                          real.real.method().c_str(), real.real.area_lower, real.real.area_upper);
-            figure.caption = caption;
-            // Draw the mechanism at a collision-free pose.
-            if (!real.real.inner.empty()) pose = sample_pose(mech, real.real.inner);
-            // The parts themselves at that pose, under the labels.
-            auto parts = part_overlays(mech, {pose.x, pose.y});
-            figure.overlays.insert(figure.overlays.begin(), parts.begin(), parts.end());
-          }
+          figure.region_legend = "real workspace (inner enclosure)";
+          char area[64];
+          std::snprintf(area, sizeof area, "%.10g", region.area());
+          figure.caption = "Inner enclosure of the real workspace (certainly reachable without collision): area " +
+                           std::string(area) + " " + area_unit(mech) + ".";
+          const mechanisms::Pose pose = sample_pose(mech, region);
+          figure.parts = figure_parts(mech, {pose.x, pose.y});
           content = io::workspace_figure(mech, region, pose, figure);
         }
         break;

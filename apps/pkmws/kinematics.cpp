@@ -252,7 +252,8 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands) {
         if (mech.model->dof() == 3) pose_text += ", phi = " + short_number(s.pose.phi / deg) + " deg";
         fo.caption = mech.name + ". " + pose_text + (ws.empty() ? "" : "; shaded: the workspace at this orientation") +
                      (s.valid ? "" : "; not valid: " + s.reason);
-        figures.emplace_back(path, io::workspace_figure(mech, ws, s.pose, fo));
+        // The actuators where q puts them (this assembly mode), not where the file's working mode would.
+        figures.emplace_back(path, io::workspace_figure(mech, ws, mech.model->draw_with_joints(s.pose, q), fo));
         j["figure"] = path;
       }
       sols.push_back(j);

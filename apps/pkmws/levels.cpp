@@ -10,6 +10,7 @@
 #include "cli.hpp"
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/export.hpp"
+#include "pkmws/io/figure.hpp"
 
 namespace pkmws::cli {
 
@@ -71,121 +72,67 @@ BandRun run_bands(const io::MechanismFile& mech, const std::string& name, const 
   return run;
 }
 
-// Colours from good (green) to bad (red), one per band.
+// Band colours from good to bad: small criterion values blue-green, large
+// ones yellow to orange (a sequential palette readable in grey scale); the
+// band above the highest level light grey.
 std::string band_colour(std::size_t k, std::size_t n) {
-  const double t = n <= 1 ? 0.0 : static_cast<double>(k) / static_cast<double>(n - 1);
-  const int r = static_cast<int>(60 + 190 * t), g = static_cast<int>(190 - 130 * t), b = 90;
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "#%02x%02x%02x", r, g, b);
+  static const char* kRamp[] = {"#2a788e", "#22a884", "#7ad151", "#bddf26", "#fde725", "#fdae61", "#f46d43"};
+  constexpr std::size_t m = std::size(kRamp);
+  const std::size_t at = n <= 1 ? 1 : (k * (m - 1) + (n - 1) / 2) / (n - 1);
+  return kRamp[std::min(at, m - 1)];
+}
+const char* kAboveColour = "#d9d9d9";
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
 
+// The band figure: the workspace in the colour of the band above the highest
+// level, each sub-level set's traced inner region on top (largest first), with
+// the axes, scale bar, legend (every band with its certified area bounds) and
+// caption of the workspace figures.
 std::string svg_figure(const io::MechanismFile& mech, const BandRun& run) {
   const geometry::Region ws = mech.model->workspace();
-  geometry::Box box = ws.bbox();
-  const double w = box.width(), h = box.height();
-  const double pad = 0.08 * std::max(w, h);
-  box.min = {box.min.x - pad, box.min.y - pad};
-  box.max = {box.max.x + pad, box.max.y + pad};
-  const double scale = 700.0 / std::max(box.width(), box.height());
-  auto X = [&](double x) { return (x - box.min.x) * scale; };
-  auto Y = [&](double y) { return (box.max.y - y) * scale; };
-  std::ostringstream s;
-  s.precision(5);
-  const double width = box.width() * scale, height = box.height() * scale;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width + 220 << "\" height=\"" << height + 40
-    << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-   s << "<text x=\"8\" y=\"16\">" << io::xml_escape(mech.name) << ": " << run.field.name << " (" << run.field.unit << ")</text>\n";
-  s << "<g transform=\"translate(0,24)\">\n";
-  // Bands: the sub-level pieces of the largest level first, then smaller ones
-  // on top, clipped to the workspace (cells across its boundary overhang it).
-  s << "<clipPath id=\"ws\">\n";
-  for (const auto& loop : ws.loops()) {
-    if (loop.hole) continue;
-    s << "<polygon points=\"";
-    for (const auto& p : loop.polyline(1e-4 * std::max(w, h))) s << X(p.x) << "," << Y(p.y) << " ";
-    s << "\"/>\n";
-  }
-  s << "</clipPath>\n<g clip-path=\"url(#ws)\">\n";
+  const std::string unit = area_unit(mech);
+  const std::string crit_unit = run.field.unit == "deg" ? "\u00b0" : (run.field.unit.empty() ? "" : " " + run.field.unit);
   const std::size_t n = run.levels.size();
-  for (std::size_t kk = n; kk-- > 0;) {
-    const auto& r = run.sub[kk];
-    const std::string c = band_colour(kk, n);
-    s << "<g fill=\"" << c << "\" stroke=\"none\">\n";
-    for (const auto& b : r.inside_boxes) {
-      if (b.width() * scale < 0.25 || b.height() * scale < 0.25) continue;  // below a pixel: invisible
-      s << "<rect x=\"" << X(b.min.x) << "\" y=\"" << Y(b.max.y) << "\" width=\"" << b.width() * scale
-        << "\" height=\"" << b.height() * scale << "\"/>\n";
-    }
-    for (const auto& poly : r.inner_polygons) {
-      geometry::Box pb;
-      for (const auto& p : poly) pb.expand(p);
-      if (pb.width() * scale < 0.25 && pb.height() * scale < 0.25) continue;
-      s << "<polygon points=\"";
-      for (const auto& p : poly) s << X(p.x) << "," << Y(p.y) << " ";
-      s << "\"/>\n";
-    }
-    s << "</g>\n";
+  io::FigureOptions f;
+  f.title = mech.name;
+  f.region_fill = kAboveColour;
+  f.region_stroke = "#555555";
+  // The band above the highest level: the workspace minus the highest sub-level set.
+  const double total = ws.area();
+  const double above_lo = std::max(0.0, total - run.sub[n - 1].region.area_upper);
+  const double above_hi = std::max(0.0, total - run.sub[n - 1].region.area_lower);
+  f.region_legend = "> " + num(run.levels[n - 1]) + crit_unit + ": " + io::interval_text(above_lo, above_hi) + " " + unit;
+  // Legend: the bands in increasing order of the criterion, then the mechanism.
+  f.region_legend_rank = -100 + static_cast<int>(n);
+  for (std::size_t kk = n; kk-- > 0;) {  // painter's order: the largest sub-level set first
+    io::FigureOptions::Overlay ov;
+    ov.rings = io::traced_inner_rings(run.sub[kk]);
+    ov.fill = band_colour(kk, n);
+    ov.stroke = "#303030";
+    ov.stroke_px = 0.8;
+    ov.css_class = "band";
+    const auto& b = run.bands[kk];
+    const std::string range = kk == 0 ? "\u2264 " + num(run.levels[0]) + crit_unit
+                                      : num(run.levels[kk - 1]) + "\u2013" + num(run.levels[kk]) + crit_unit;
+    ov.legend = range + ": " + io::interval_text(b.area_lower, b.area_upper) + " " + unit;
+    ov.legend_rank = -100 + static_cast<int>(kk);
+    f.overlays.push_back(std::move(ov));
   }
-  s << "</g>\n";
-  // Mask outside the workspace: its boundary drawn over the cells.
-  s << "<g fill=\"none\" stroke=\"black\" stroke-width=\"1.5\">\n";
-  for (const auto& loop : ws.loops()) {
-    const auto pts = loop.polyline(1e-4 * std::max(w, h));
-    s << "<polygon points=\"";
-    for (const auto& p : pts) s << X(p.x) << "," << Y(p.y) << " ";
-    s << "\"/>\n";
-  }
-  s << "</g>\n";
-  // Level curves (traced points).
-  s << "<g fill=\"none\" stroke=\"#202020\" stroke-width=\"0.7\">\n";
-  for (const auto& r : run.sub) {
-    for (const auto& piece : r.curves) {
-      geometry::Box pb;
-      for (const auto& p : piece) pb.expand(p);
-      if (pb.width() * scale < 0.25 && pb.height() * scale < 0.25) continue;
-      s << "<polyline points=\"";
-      for (const auto& p : piece) s << X(p.x) << "," << Y(p.y) << " ";
-      s << "\"/>\n";
-    }
-  }
-  s << "</g>\n";
-  // The mechanism at a sample pose, with its type-2 singular curves dashed.
-  mechanisms::Pose pose = sample_pose(mech, ws);
-  if (const auto* rpr = dynamic_cast<const mechanisms::ThreeRpr*>(mech.model.get())) pose.phi = rpr->orientation();
-  const mechanisms::Drawing d = mech.model->draw(pose);
-  s << "<g fill=\"none\" stroke=\"#303080\" stroke-width=\"1.2\" stroke-dasharray=\"6,4\">\n";
-  for (const auto& c : d.singular_curves) {
-    s << "<polyline points=\"";
-    for (const auto& p : c) s << X(p.x) << "," << Y(p.y) << " ";
-    s << "\"/>\n";
-  }
-  s << "</g>\n<g stroke=\"#1040a0\" stroke-width=\"2.5\">\n";
-  for (const auto& l : d.links) {
-    s << "<line x1=\"" << X(l.a.x) << "\" y1=\"" << Y(l.a.y) << "\" x2=\"" << X(l.b.x) << "\" y2=\"" << Y(l.b.y) << "\"/>\n";
-  }
-  s << "</g>\n<g fill=\"white\" stroke=\"#1040a0\" stroke-width=\"1.5\">\n";
-  for (const auto& j : d.joints) s << "<circle cx=\"" << X(j.x) << "\" cy=\"" << Y(j.y) << "\" r=\"3.5\"/>\n";
-  s << "</g>\n";
-  // Legend.
-  for (std::size_t k = 0; k < n; ++k) {
-    const double y = 20.0 + 22.0 * static_cast<double>(k);
-    char label[160];
-    if (k == 0) {
-      std::snprintf(label, sizeof label, "&#8804; %g: [%.6g, %.6g]", run.levels[k], run.bands[k].area_lower, run.bands[k].area_upper);
-    } else {
-      std::snprintf(label, sizeof label, "%g..%g: [%.6g, %.6g]", run.levels[k - 1], run.levels[k], run.bands[k].area_lower,
-                    run.bands[k].area_upper);
-    }
-    s << "<rect x=\"" << width + 8 << "\" y=\"" << y - 11 << "\" width=\"14\" height=\"14\" fill=\"" << band_colour(k, n)
-      << "\"/><text x=\"" << width + 26 << "\" y=\"" << y << "\" font-size=\"10\">" << label << "</text>\n";
-  }
-  s << "<text x=\"" << width + 8 << "\" y=\"" << 20.0 + 22.0 * static_cast<double>(n) << "\" font-size=\"10\">areas in "
-    << area_unit(mech) << " (certified)</text>\n";
-  s << "<text x=\"" << width + 8 << "\" y=\"" << 36.0 + 22.0 * static_cast<double>(n)
-    << "\" font-size=\"10\">dashed: type-2 singularity</text>\n";
-  s << "</g>\n</svg>\n";
-  return s.str();
+  const std::string cite = io::source_citation(mech);
+  std::string what = run.field.name;
+  std::replace(what.begin(), what.end(), '_', ' ');
+  f.caption = (cite.empty() ? "" : cite + ". ") + "Bands of the " + what +
+              (run.field.unit.empty() ? "" : " (" + run.field.unit + ")") + " with certified area bounds in " + unit +
+              " (legend). Each band is drawn from the traced level curves (the inner bound of its sub-level set).";
+  // The mechanism at a pose of the lowest band (the best transmission).
+  const geometry::Region best = io::largest_ring_region(f.overlays.back().rings, ws);
+  const mechanisms::Pose pose = sample_pose(mech, best.empty() ? ws : best);
+  return io::workspace_figure(mech, ws, pose, f);
 }
 
 std::string curves_csv(const BandRun& run, const std::vector<double>& levels) {
@@ -212,11 +159,12 @@ std::string bands_export(const io::MechanismFile& mech, const std::string& crite
   return svg ? svg_figure(mech, run) : curves_csv(run, levels);
 }
 
-Json criteria_area_report(const io::MechanismFile& mech, double tolerance, const CertifiedWork* work) {
+Json criteria_area_report(const io::MechanismFile& mech, double tolerance, const CertifiedWork* work,
+                          criteria::LimitedWorkspace* limited) {
   const auto limits = criteria::file_limits(mech);
   certified::LevelSetOptions o;
   o.relative_tolerance = tolerance;
-  const criteria::LimitedWorkspace lw = criteria::limited_workspace(mech, limits, work ? work->options(o) : o);
+  criteria::LimitedWorkspace lw = criteria::limited_workspace(mech, limits, work ? work->options(o) : o);
   Json report;
   report["name"] = mech.name;
   report["mechanism"] = mech.mechanism;
@@ -235,6 +183,7 @@ Json criteria_area_report(const io::MechanismFile& mech, double tolerance, const
   report["time_ms"] = lw.time_ms;
   if (lw.detail.stopped && work) report["stopped"] = work->stopped_note();
   if (!lw.note.empty()) report["note"] = lw.note;
+  if (limited) *limited = std::move(lw);
   return report;
 }
 

@@ -36,4 +36,6 @@ certified::CertifiedRegion Mechanism::workspace_enclosure(int /*max_depth*/) con
   return certified::from_exact(workspace());
 }
 
+Drawing Mechanism::draw_with_joints(const Pose& pose, std::span<const double> /*joints*/) const { return draw(pose); }
+
 }  // namespace pkmws::mechanisms

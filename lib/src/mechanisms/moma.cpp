@@ -268,6 +268,25 @@ bool Moma::reachable(const Pose& pose) const {
 }
 
 Drawing Moma::draw(const Pose& pose) const {
+  // Each slider where the file's branch puts it; if that is off the stroke,
+  // where the other root of the leg's equation puts it (a pose of another
+  // assembly mode), so that the rod drawn has the rod's length.
+  const Point p{pose.x, pose.y};
+  std::array<double, 2> q{};
+  for (int i = 0; i < 2; ++i) {
+    const MomaLeg& l = legs_[i];
+    auto in_stroke = [&](const std::optional<double>& v) { return v && *v >= l.stroke_min && *v <= l.stroke_max; };
+    const auto own = inverse_leg(i, p, l.branch);
+    const auto other = inverse_leg(i, p, -l.branch);
+    q[static_cast<std::size_t>(i)] = in_stroke(own) ? *own
+                                     : in_stroke(other) ? *other
+                                     : own ? std::clamp(*own, l.stroke_min, l.stroke_max)
+                                           : 0.5 * (l.stroke_min + l.stroke_max);
+  }
+  return draw_with_joints(pose, q);
+}
+
+Drawing Moma::draw_with_joints(const Pose& pose, std::span<const double> joints) const {
   Drawing d;
   const Point p{pose.x, pose.y};
   d.tool = p;
@@ -275,12 +294,13 @@ Drawing Moma::draw(const Pose& pose) const {
     const MomaLeg& l = legs_[i];
     d.guides.push_back({slider(i, l.stroke_min), slider(i, l.stroke_max)});
     d.base_points.push_back(l.reference);
-    const auto q = inverse_leg(i, p, l.branch);
-    const double at = q ? std::clamp(*q, l.stroke_min, l.stroke_max) : 0.5 * (l.stroke_min + l.stroke_max);
+    const double at = static_cast<std::size_t>(i) < joints.size() ? joints[static_cast<std::size_t>(i)]
+                                                                   : 0.5 * (l.stroke_min + l.stroke_max);
     const Point s = slider(i, at);
     d.sliders.push_back(s);
     d.joints.push_back(s);
-    if (q) d.links.push_back({s, p});
+    // The rod only when it closes (|P - S| = l to 1e-7 of the rod).
+    if (std::abs(norm(p - s) - l.rod_length) <= 1e-7 * l.rod_length) d.links.push_back({s, p});
   }
   d.joints.push_back(p);
   return d;

@@ -572,6 +572,7 @@ Drawing ThreeRpr::draw(const Pose& pose) const {
   Drawing d;
   d.tool = {pose.x, pose.y};
   const auto b = platform_points(pose);
+  d.platform.assign(b.begin(), b.end());
   for (std::size_t i = 0; i < 3; ++i) {
     d.base_points.push_back(base_[i]);
     d.links.push_back({base_[i], b[i]});

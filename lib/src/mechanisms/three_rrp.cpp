@@ -384,11 +384,6 @@ bool ThreeRrp::reachable(const Pose& pose) const {
 }
 
 Drawing ThreeRrp::draw(const Pose& pose) const {
-  Drawing d;
-  const Point p{pose.x, pose.y};
-  d.tool = p;
-  const std::array<Point, 3> b = platform_points(pose);
-  for (std::size_t i = 0; i < 3; ++i) d.links.push_back({b[i], b[(i + 1) % 3]});
   // One working mode: the first valid one, else the first with joint values.
   const std::vector<JointSolution> solutions = inverse(pose);
   const JointSolution* chosen = nullptr;
@@ -400,6 +395,17 @@ Drawing ThreeRrp::draw(const Pose& pose) const {
       if (s.joints.size() == 3) { chosen = &s; break; }
     }
   }
+  return draw_with_joints(pose, chosen ? std::span<const double>(chosen->joints) : std::span<const double>());
+}
+
+Drawing ThreeRrp::draw_with_joints(const Pose& pose, std::span<const double> joints) const {
+  Drawing d;
+  const Point p{pose.x, pose.y};
+  d.tool = p;
+  const std::array<Point, 3> b = platform_points(pose);
+  d.platform.assign(b.begin(), b.end());
+  for (std::size_t i = 0; i < 3; ++i) d.links.push_back({b[i], b[(i + 1) % 3]});
+  const bool legs = joints.size() == 3;
   for (std::size_t i = 0; i < 3; ++i) {
     const ThreeRrpChain& c = chains_[i];
     d.base_points.push_back(c.base);
@@ -407,12 +413,12 @@ Drawing ThreeRrp::draw(const Pose& pose) const {
       const Point u = unit(c.direction);
       if (c.limits) {
         d.guides.push_back({c.base + (*c.limits)[0] * u, c.base + (*c.limits)[1] * u});
-      } else if (chosen) {
-        d.guides.push_back({c.base, external_joint(static_cast<int>(i), chosen->joints[i])});
+      } else if (legs) {
+        d.guides.push_back({c.base, external_joint(static_cast<int>(i), joints[i])});
       }
     }
-    if (!chosen) continue;
-    const Point a = external_joint(static_cast<int>(i), chosen->joints[i]);
+    if (!legs) continue;
+    const Point a = external_joint(static_cast<int>(i), joints[i]);
     if (drive_ == ThreeRrpDrive::crank) {
       d.links.push_back({c.base, a});
       d.joints.push_back(c.base);

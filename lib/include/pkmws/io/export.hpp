@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pkmws/geometry/region.hpp"
+#include "pkmws/io/figure.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 
 namespace pkmws::io {
@@ -101,28 +102,7 @@ std::string to_geojson(const geometry::Region& region, const ExportOptions& opti
 /// component,loop,hole,kind,x0,y0,x1,y1,cx,cy,r,sweep_deg
 std::string to_csv(const geometry::Region& region, const ExportOptions& options = {});
 
-/// The paper-style figure of a mechanism's workspace: filled region with true
-/// arcs, axes with ticks and a scale bar, the mechanism drawn at `pose`
-/// (guides dashed, rods, joints), title and area in the caption.
-struct FigureOptions {
-  std::string title;
-  std::string caption;  // e.g. "area = 73 205.4 mm²"
-  bool draw_mechanism = true;
-  /// Regions drawn over the workspace in order (e.g. interference regions
-  /// shaded and the real workspace outlined in black, [Vasilic] figs. 5-11).
-  struct Overlay {
-    geometry::Region region;
-    std::string fill = "none";      // SVG colour or "none"
-    double fill_opacity = 1.0;
-    std::string stroke = "black";   // SVG colour or "none"
-    double stroke_px = 2.0;
-    std::string label;              // written at its largest component's centroid (empty: none)
-    std::string legend;             // legend entry (empty: none)
-  };
-  std::vector<Overlay> overlays;
-};
-std::string workspace_figure(const MechanismFile& file, const geometry::Region& region,
-                             const mechanisms::Pose& pose, const FigureOptions& options);
+/// The paper-style figure (FigureOptions, workspace_figure): pkmws/io/figure.hpp.
 
 /// Writes `content` to `path` atomically (temporary file + rename), so a failure
 /// never leaves a partial file behind. Throws InputError when it cannot.

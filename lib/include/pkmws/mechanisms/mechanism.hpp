@@ -90,6 +90,8 @@ struct Drawing {
   std::vector<Point> sliders;      // prismatic joints (sliders)
   std::vector<Point> base_points;  // fixed joints
   Point tool;                      // the platform point P
+  /// 3-DOF: the platform's vertices B_1, B_2, ... at the pose (drawn filled); empty otherwise.
+  std::vector<Point> platform;
   /// Type-2 (parallel) singularity loci in task space, as polylines (drawn dashed).
   std::vector<std::vector<Point>> singular_curves;
 };
@@ -124,6 +126,13 @@ class Mechanism {
   virtual bool reachable(const Pose& pose) const = 0;
   /// The mechanism at a pose, for figures.
   virtual Drawing draw(const Pose& pose) const = 0;
+  /// The mechanism at a pose with given joint values (an assembly mode of
+  /// direct kinematics): the actuators drawn where `joints` puts them, not where
+  /// the file's working mode would. Default: draw(pose).
+  virtual Drawing draw_with_joints(const Pose& pose, std::span<const double> joints) const;
+  /// The platform orientation (radians) at which workspace() is computed: the
+  /// file's constant orientation for 3-DOF mechanisms, 0 otherwise.
+  virtual double orientation() const { return 0.0; }
   /// A bounding box that contains the whole reachable workspace.
   virtual geometry::Box bounds() const = 0;
 };

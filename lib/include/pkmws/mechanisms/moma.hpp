@@ -72,6 +72,8 @@ class Moma final : public Mechanism {
   geometry::Region workspace() const override;
   bool reachable(const Pose& pose) const override;
   Drawing draw(const Pose& pose) const override;
+  /// The sliders at p_i = joints[i] (an assembly mode of dk), rods to the pose.
+  Drawing draw_with_joints(const Pose& pose, std::span<const double> joints) const override;
   geometry::Box bounds() const override;
 
  private:

@@ -82,7 +82,7 @@ class ThreeRpr final : public Mechanism {
   const std::array<Point, 3>& base() const { return base_; }
   const std::array<Point, 3>& platform() const { return platform_; }
   ThreeRprActuation actuation() const { return actuation_; }
-  double orientation() const { return orientation_; }
+  double orientation() const override { return orientation_; }
   const std::optional<std::array<std::array<double, 2>, 3>>& leg_limits() const { return leg_limits_; }
   const std::optional<geometry::Box>& analysis_window() const { return window_; }
 

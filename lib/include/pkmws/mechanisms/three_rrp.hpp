@@ -83,7 +83,7 @@ class ThreeRrp final : public Mechanism {
   const std::array<ThreeRrpChain, 3>& chains() const { return chains_; }
   const AssurTriangle& triangle() const { return triangle_; }
   /// The constant orientation of workspace() (the file's orientation_deg), radians.
-  double orientation() const { return orientation_; }
+  double orientation() const override { return orientation_; }
 
   /// A_i from the joint value ([Mitsi] eq. 1-2).
   Point external_joint(int chain, double joint) const;
@@ -123,6 +123,8 @@ class ThreeRrp final : public Mechanism {
   geometry::Region workspace() const override;
   bool reachable(const Pose& pose) const override;
   Drawing draw(const Pose& pose) const override;
+  /// The cranks / sliders at the given joint values (an assembly mode of dk).
+  Drawing draw_with_joints(const Pose& pose, std::span<const double> joints) const override;
   geometry::Box bounds() const override;
 
   /// Characteristic length used to make the angular column of dq/dx
