@@ -29,7 +29,8 @@ AreaResult compute_area(const io::MechanismFile& mech, int interference_depth, c
     throw io::InputError(mech.path + ": the workspace is empty (impossible geometry: the legs cannot meet)");
   }
   Json& report = out.report;
-  report = region_report(region, io::effective_min_area(region, {}), rectangle_precision);
+  report = region_report(region, io::effective_min_area(region, {}), rectangle_precision,
+                         out.enclosure.exact ? nullptr : &out.enclosure.inner);
   double area = report["area"];
   report["name"] = mech.name;
   report["mechanism"] = mech.mechanism;

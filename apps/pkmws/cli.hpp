@@ -118,7 +118,10 @@ certified::CertifiedRegion workspace_enclosure_of(const io::MechanismFile& file)
 mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Region& region);
 /// Area, components and their figures, as in `pkmws area --json`; the
 /// inscribed rectangle to a relative width of `rectangle_precision`.
-Json region_report(const geometry::Region& region, double min_area, double rectangle_precision = 1e-6);
+/// With `inside` (a certified enclosure's inner region), each component's
+/// rectangle is searched there, so that it fits the true workspace.
+Json region_report(const geometry::Region& region, double min_area, double rectangle_precision = 1e-6,
+                   const geometry::Region* inside = nullptr);
 /// Length unit squared, e.g. "mm²".
 std::string area_unit(const io::MechanismFile& file);
 

@@ -331,12 +331,27 @@ Json rectangle_json(const geometry::InscribedRectangle& r) {
               {"verified", r.verified}};
 }
 
-Json region_report(const geometry::Region& region, double min_area, double rectangle_precision) {
+Json region_report(const geometry::Region& region, double min_area, double rectangle_precision,
+                   const geometry::Region* inside) {
   Json comps = Json::array();
   double area = 0.0;
+  // Rectangles must fit the true workspace: for a certified enclosure they are
+  // searched in the inner region's components within this component.
+  std::vector<geometry::Component> inner;
+  if (inside) inner = inside->components(io::effective_min_area(*inside, {}));
   for (const auto& c : region.components(min_area)) {
     const auto circle = geometry::largest_inscribed_circle(c, precision_for(c.bbox));
-    const auto rect = geometry::largest_inscribed_rectangle(c, rectangle_precision, {}, &region);
+    geometry::InscribedRectangle rect;
+    if (!inside) {
+      rect = geometry::largest_inscribed_rectangle(c, rectangle_precision, {}, &region);
+    } else {
+      for (const auto& k : inner) {
+        if (k.outer.curves.empty() || !geometry::inside(c, k.outer.curves.front().source)) continue;
+        const auto r = geometry::largest_inscribed_rectangle(k, rectangle_precision, {}, inside);
+        if (r.area > rect.area) rect = r;
+        rect.area_upper = std::max(rect.area_upper, r.area_upper);
+      }
+    }
     comps.push_back(Json{{"area", c.area},
                          {"perimeter", c.perimeter},
                          {"holes", c.holes.size()},
