@@ -3,6 +3,12 @@ export/area: a stack overflow in CGAL's lazy evaluation of a polygon's area,
 fixed in polygon_region) stays fixed, for every bundled criteria file and the
 degenerate valid files of the fuzz corpus. Heavy (minutes under
 AddressSanitizer): labelled `heavy`, not in `make sanitize`."""
+import json
+import subprocess
+
+import pytest
+
+from conftest import CLI
 from test_reliability import DATASET, SOURCE_DIR, pkmws, refused
 
 
@@ -19,3 +25,16 @@ def test_bundled_and_degenerate_criteria_files_do_not_crash(tmp_path):
         assert r.returncode in (0, 2), (f, r.stderr)
         if r.returncode == 2:
             refused(r, "--max-time")
+
+
+@pytest.mark.parametrize("name", ["five_bar_pressure_angle_1e-9", "five_bar_pressure_angle_89.999",
+                                  "biglide_velocity_ratio_1"])
+def test_degenerate_limits_answer_within_the_bound(name):
+    # A limit at a field's extreme: certified bounds (maybe wide), or a result
+    # labelled `stopped`, before the bound; never minutes of silence.
+    r = subprocess.run([CLI, "area", "--json", "--max-time", "10",
+                        str(SOURCE_DIR / "tests/fuzz/corpus" / (name + ".json"))],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    j = json.loads(r.stdout)
+    assert 0.0 <= j["area_lower"] <= j["area_upper"]
