@@ -15,6 +15,10 @@ BOUND = "1"  # --max-time of the certified commands (seconds)
 TIMEOUT = 120  # a hang fails the test (sanitizer builds are ~10x slower)
 
 
+def no_constant(name):
+    raise AssertionError(f"{name} in a JSON report")
+
+
 def commands(out):
     # (arguments after FILE, prints JSON?)
     return [
@@ -56,9 +60,8 @@ def test_every_command_on_a_corpus_file(path, tmp_path):
             assert len(lines) == 1 and lines[0].startswith("pkmws: error: "), f"{what}: {r.stderr[-1000:]}"
             continue
         if prints_json:
-            j = json.loads(r.stdout)
+            j = json.loads(r.stdout, parse_constant=no_constant)  # NaN / Infinity are not JSON
             assert bare_nulls(j) == [], f"{what}: {bare_nulls(j)}"
-        assert "nan" not in r.stdout.lower().replace("name", "").replace("paminsa", ""), what
     leftovers = [p.name for p in tmp_path.rglob("*") if "partial" in p.name or ".tmp-" in p.name]
     assert leftovers == []
 
