@@ -11,8 +11,12 @@ from conftest import CLI, SOURCE_DIR
 from test_reliability import bare_nulls
 
 CORPUS = sorted((SOURCE_DIR / "tests/fuzz/corpus").glob("*.json"))
-BOUND = "2"  # --max-time of the certified commands (seconds)
+BOUND = "1"  # --max-time of the certified commands (seconds)
 TIMEOUT = 120  # a hang fails the test (sanitizer builds are ~10x slower)
+
+
+def no_constant(name):
+    raise AssertionError(f"{name} in a JSON report")
 
 
 def commands(out):
@@ -21,7 +25,6 @@ def commands(out):
         (["info"], True),
         (["area", "--json", "--max-time", BOUND], True),
         (["export", "-f", "svg", "-o", out / "x.svg", "--max-time", BOUND], False),
-        (["export", "-f", "geojson", "-o", out / "x.geojson", "--max-time", BOUND], False),
         (["ik", "0", "0", "0"], True), (["ik", "0", "0"], True),
         (["eval", "0", "0", "0"], True), (["eval", "0.1", "-0.1"], True),
         (["dk", "0", "0", "0"], True), (["dk", "0.5", "-0.5"], True),
@@ -57,9 +60,8 @@ def test_every_command_on_a_corpus_file(path, tmp_path):
             assert len(lines) == 1 and lines[0].startswith("pkmws: error: "), f"{what}: {r.stderr[-1000:]}"
             continue
         if prints_json:
-            j = json.loads(r.stdout)
+            j = json.loads(r.stdout, parse_constant=no_constant)  # NaN / Infinity are not JSON
             assert bare_nulls(j) == [], f"{what}: {bare_nulls(j)}"
-        assert "nan" not in r.stdout.lower().replace("name", "").replace("paminsa", ""), what
     leftovers = [p.name for p in tmp_path.rglob("*") if "partial" in p.name or ".tmp-" in p.name]
     assert leftovers == []
 
@@ -73,16 +75,3 @@ def test_singular_everywhere_is_answered_at_once():
     assert j["area_lower"] == 0.0 and j["area_upper"] == 0.0
     assert "singular at every position" in j["note"]
     assert "stopped" not in j
-
-
-@pytest.mark.parametrize("name", ["five_bar_pressure_angle_1e-9", "five_bar_pressure_angle_89.999",
-                                  "biglide_velocity_ratio_1"])
-def test_degenerate_limits_answer_within_the_bound(name):
-    # A limit at a field's extreme: certified bounds (maybe wide), or a result
-    # labelled `stopped`, before the bound; never minutes of silence.
-    r = subprocess.run([CLI, "area", "--json", "--max-time", "10",
-                        str(SOURCE_DIR / "tests/fuzz/corpus" / (name + ".json"))],
-                       capture_output=True, text=True, timeout=60)
-    assert r.returncode == 0, r.stderr
-    j = json.loads(r.stdout)
-    assert 0.0 <= j["area_lower"] <= j["area_upper"]

@@ -2,7 +2,6 @@
 fuzzing pass found. Every run has a bounded timeout: a hang fails the test
 instead of stalling the suite."""
 import json
-import math
 import pathlib
 import subprocess
 

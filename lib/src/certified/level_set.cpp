@@ -661,7 +661,10 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
   result.undecided_area = undecided_in + straddle_und;
   result.traced_width = traced_upper - traced_lower;
   result.region.exact = false;
-  if (options.build_regions) {
+  // Past the deadline the exact regions (seconds to minutes of Boolean
+  // operations on many boxes) are not started either.
+  if (options.build_regions && std::chrono::steady_clock::now() >= options.deadline) result.stopped = true;
+  if (options.build_regions && !result.stopped) {  // stopped: too many cells to be worth it
     // Exact regions from boxes: each traced cell contributes the box below
     // (inner) / around (outer) its envelopes, so area(inner) <= area_lower
     // and area(outer) >= area_upper (the bounds use the envelopes themselves).

@@ -91,7 +91,8 @@ struct LevelSetResult {
   std::uint64_t curve_points = 0;      // certified root brackets computed
   std::uint64_t cell_tests = 0;
   /// The deadline of the options passed before the work was done: the bounds
-  /// are valid but may be wider than the tolerance asked for.
+  /// are valid but may be wider than the tolerance asked for, and the
+  /// inner/outer regions are not built (even with build_regions).
   bool stopped = false;
   double undecided_area = 0.0;         // part of the width from undecided cells
   double traced_width = 0.0;           // part of the width from traced cells
