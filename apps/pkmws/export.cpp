@@ -86,6 +86,22 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     // With criteria limits ([Briot] figs. 10, 13): the certified limited
     // region, its enclosures built at cell resolution.
     const bool limited = mech.criteria.any() && !a->real;
+    // Which enclosure: stated in GeoJSON, DXF and SVG; WKT and CSV carry no
+    // metadata, so a certified region needs --bound there (checked before the
+    // region is built where that is known from the file).
+    const bool boundary_only = format != io::ExportFormat::svg || a->bare;
+    auto require_bound = [&](bool certified_region) {
+      if (certified_region && boundary_only && a->bound.empty() &&
+          (format == io::ExportFormat::wkt || format == io::ExportFormat::csv)) {
+        throw io::InputError(std::string("--bound: ") + (a->real ? "the real workspace" : "this workspace") +
+                             " is certified, not exact, and " + std::string(io::format_name(format)) +
+                             " has no metadata to say which enclosure it holds: give --bound inner or --bound outer");
+      }
+    };
+    if (a->real && !mech.bodies) {
+      throw io::InputError(a->file + ": --real needs `bodies` in the file (docs/format.md (bodies))");
+    }
+    require_bound(limited || a->real);
     std::string limited_caption;
     certified::CertifiedRegion enclosure;
     if (limited) {
@@ -103,19 +119,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     } else {
       enclosure = workspace_enclosure_of(mech);
     }
-    if (a->real && !mech.bodies) {
-      throw io::InputError(a->file + ": --real needs `bodies` in the file (docs/format.md (bodies))");
-    }
-    // Which enclosure: stated in GeoJSON, DXF and SVG; WKT and CSV carry no
-    // metadata, so a certified region needs --bound there.
-    const bool certified = a->real || !enclosure.exact;
-    const bool boundary_only = format != io::ExportFormat::svg || a->bare;
-    if (certified && boundary_only && a->bound.empty() &&
-        (format == io::ExportFormat::wkt || format == io::ExportFormat::csv)) {
-      throw io::InputError(std::string("--bound: ") + (a->real ? "the real workspace" : "this workspace") +
-                           " is certified, not exact, and " + std::string(io::format_name(format)) +
-                           " has no metadata to say which enclosure it holds: give --bound inner or --bound outer");
-    }
+    require_bound(a->real || !enclosure.exact);
     const std::string bound = !a->bound.empty() ? a->bound : a->real ? "inner" : "outer";
     geometry::Region region = enclosure.exact || bound == "outer" ? enclosure.outer : enclosure.inner;
     if (enclosure.outer.empty()) {

@@ -250,17 +250,23 @@ def check_certified(stem, extra, tmp):
         else:
             assert gj.area >= upper - slack, (stem, gj.area, upper)
         sizes[bound] = bbox_size(gj)
-    run("export", path, "-f", "wkt", "--bound", "inner", "-o", tmp / f"{stem}.wkt", *extra)
-    wkt = shapely.wkt.loads((tmp / f"{stem}.wkt").read_text())
-    check_polygons(wkt, f"{stem} inner WKT")
-    assert wkt.area <= lower + slack
+    # The other formats once each (the criteria file only in DXF: its every
+    # export rebuilds the certified region, ~10 s).
+    formats = ["dxf"] if "criteria" in json.loads(path.read_text()) else ["wkt", "dxf", "csv", "svg"]
+    if "wkt" in formats:
+        run("export", path, "-f", "wkt", "--bound", "inner", "-o", tmp / f"{stem}.wkt", *extra)
+        wkt = shapely.wkt.loads((tmp / f"{stem}.wkt").read_text())
+        check_polygons(wkt, f"{stem} inner WKT")
+        assert wkt.area <= lower + slack
     run("export", path, "-f", "dxf", "--bound", "outer", "-o", tmp / f"{stem}.dxf", *extra)
     check_dxf(tmp / f"{stem}.dxf", a["units"], None, sizes["outer"])
     assert "bound: outer enclosure" in (tmp / f"{stem}.dxf").read_text()
-    run("export", path, "-f", "csv", "--bound", "inner", "-o", tmp / f"{stem}.csv", *extra)
-    check_csv(tmp / f"{stem}.csv", sizes["inner"])
-    run("export", path, "-f", "svg", "--bare", "--bound", "outer", "-o", tmp / f"{stem}.svg", *extra)
-    check_svg_renders(tmp / f"{stem}.svg", tmp)
+    if "csv" in formats:
+        run("export", path, "-f", "csv", "--bound", "inner", "-o", tmp / f"{stem}.csv", *extra)
+        check_csv(tmp / f"{stem}.csv", sizes["inner"])
+    if "svg" in formats:
+        run("export", path, "-f", "svg", "--bare", "--bound", "outer", "-o", tmp / f"{stem}.svg", *extra)
+        check_svg_renders(tmp / f"{stem}.svg", tmp)
     # WKT and CSV carry no metadata: a certified region needs --bound.
     for fmt in ("wkt", "csv"):
         out = tmp / f"{stem}_nobound.{fmt}"
@@ -327,7 +333,7 @@ ISSUE_DESIGN = {"name": "issue five-bar", "mechanism": "five_bar", "units": "mm"
                 "working_mode": [1, -1], "actuator_limits_deg": [[30, 170], [10, 150]]}
 
 
-def check_design(doc, stem, tmp):
+def check_design(doc, stem, tmp, full=True):
     path = tmp / f"{stem}.json"
     path.write_text(json.dumps(doc))
     r = run("area", path, "--json", check=False)
@@ -336,10 +342,11 @@ def check_design(doc, stem, tmp):
     assert r.returncode == 0, r.stderr
     a = json.loads(r.stdout)
     gj, props = check_exact_polygons(tmp, path, stem, a["area"])
-    run("export", path, "-f", "dxf", "-o", tmp / f"{stem}.dxf")
-    check_dxf(tmp / f"{stem}.dxf", "mm", a["area"], bbox_size(gj))
-    run("export", path, "-f", "csv", "-o", tmp / f"{stem}.csv")
-    check_csv(tmp / f"{stem}.csv", bbox_size(gj))
+    if full:  # DXF and CSV for a third of the designs (time)
+        run("export", path, "-f", "dxf", "-o", tmp / f"{stem}.dxf")
+        check_dxf(tmp / f"{stem}.dxf", "mm", a["area"], bbox_size(gj))
+        run("export", path, "-f", "csv", "-o", tmp / f"{stem}.csv")
+        check_csv(tmp / f"{stem}.csv", bbox_size(gj))
     return len(a["components"])
 
 
@@ -353,7 +360,8 @@ def test_random_designs_export_valid_polygons_within_their_bound(tmp_path):
     while len(designs) < 260:
         designs.append(random_moma(rng) if len(designs) % 2 else random_five_bar(rng))
     with ThreadPoolExecutor(2) as pool:
-        results = list(pool.map(lambda kd: check_design(kd[1], f"d{kd[0]}", tmp_path), enumerate(designs)))
+        results = list(pool.map(lambda kd: check_design(kd[1], f"d{kd[0]}", tmp_path, kd[0] % 3 == 0),
+                                enumerate(designs)))
     exported = [c for c in results if c is not None]
     print(f"random designs: {len(exported)} exported of {len(designs)}, {sum(1 for c in exported if c > 1)} with several components")
     assert len(exported) >= 200, len(exported)
