@@ -119,7 +119,9 @@ TEST(BodiesCli, ExportDrawsInterferenceAndRealOutline) {
   EXPECT_NE(svg.find("rod1 / housing2"), std::string::npos);
   EXPECT_NE(svg.find("real workspace"), std::string::npos);
   EXPECT_NE(svg.find("stroke=\"black\""), std::string::npos);
-  EXPECT_NE(svg.find("fill-opacity=\"0.4"), std::string::npos);
+  // Interference hatched (overlaps stay readable), not translucent fills.
+  EXPECT_NE(svg.find("fill=\"url(#hatch"), std::string::npos);
+  EXPECT_EQ(svg.find("fill-opacity=\"0.4"), std::string::npos);
   // --real: the real workspace's inner enclosure, e.g. as WKT; needs bodies.
   const fs::path wkt = fs::temp_directory_path() / ("pkmws-bodies-real-" + std::to_string(::getpid()) + ".wkt");
   // WKT has no metadata: the enclosure is named on the command line.

@@ -6,14 +6,27 @@ import subprocess
 
 import pytest
 
-from conftest import DATASETS, run
+from conftest import DATASETS, SOURCE_DIR, run
 import svgfig
+
+# One file of every kind (exact MOMA, certified biglide, criteria-limited
+# five-bar, PAMINSA and biglide, machines with bodies, 3-DOF, no planar
+# workspace): the whole of datasets/ takes `make demo` minutes, too long for a
+# unit test; PKMWS_BATCH_ALL=1 runs every bundled file.
+KINDS = ["moma_m3_l180", "biglide_real", "five_bar_dextar_pm_alpha40", "three_rpr_paminsa_phi25_r200",
+         "biglide_simplified_vratio2", "machine_moma_m1", "three_rrp_mitsi", "three_rpr_prismatic",
+         "five_bar_dextar_pp", "pi_joint_prototype"]
+import os
+if os.environ.get("PKMWS_BATCH_ALL") == "1":
+    FILES = DATASETS
+else:
+    FILES = [SOURCE_DIR / "datasets" / f"{k}.json" for k in KINDS]
 
 
 @pytest.fixture(scope="module")
 def batch(tmp_path_factory):
     out = tmp_path_factory.mktemp("batch")
-    r = run("batch", *DATASETS, "--out", out, timeout=900)
+    r = run("batch", *FILES, "--out", out, timeout=1800)
     rows = json.loads((out / "summary.json").read_text())
     return out, rows, r.stdout, (out / "summary.md").read_text()
 
@@ -22,7 +35,7 @@ def close(a, b, rel=1e-9):
     return abs(a - b) <= rel * max(abs(a), abs(b))
 
 
-@pytest.mark.parametrize("path", DATASETS, ids=lambda p: p.stem)
+@pytest.mark.parametrize("path", FILES, ids=lambda p: p.stem)
 def test_batch_row_equals_area_json(batch, path):
     out, rows, stdout, md = batch
     (row,) = [r for r in rows if r["file"] == str(path)]
