@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # make demo: exact workspaces of every bundled mechanism, their figures and a
-# summary table in out/ (summary.md, summary.json, one SVG per dataset).
+# summary table in out/ (summary.md, summary.json, one SVG per dataset), a
+# design sweep (CSV/JSON) and an atlas figure.
 set -euo pipefail
 pkmws=${1:-build/bin/pkmws}
 out=${2:-out}
@@ -15,5 +16,12 @@ echo "3-RRP of [Mitsi] (reconstructed), crank angles 60, 10, 10 deg: both assemb
   >"$out/three_rrp_mitsi_dk.json"
 echo "  $out/three_rrp_mitsi_dk.json (poses, platform points, the eliminant and its roots),"
 echo "  $out/three_rrp_mitsi_assembly_1.svg, $out/three_rrp_mitsi_assembly_2.svg"
+echo
+echo "Design space: MOMA M1 over rod length x guide angle (table) and rod length x stroke (atlas):"
+"$pkmws" sweep examples/sweeps/moma_m1_rods.json -o "$out/sweep_moma_m1_rods.csv" --json "$out/sweep_moma_m1_rods.json"
+"$pkmws" sweep examples/sweeps/moma_m1_atlas.json -o "$out/sweep_moma_m1_atlas.csv"
+"$pkmws" atlas "$out/sweep_moma_m1_atlas.csv" --x rod_length --y stroke --metric rectangle_area \
+  --x-label "rod length l (mm)" --y-label "stroke h (mm)" --metric-label "rectangle area (mm²)" \
+  --title "MOMA M1: largest inscribed rectangle (guides at x = ∓100 mm)" -o "$out/atlas_moma_m1.svg"
 echo
 echo "Figures and the summary table are in $out/ (open $out/summary.md)."

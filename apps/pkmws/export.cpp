@@ -80,7 +80,9 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     if (format == io::ExportFormat::svg && !a->bare && !a->real) {
       // The figure: what `pkmws area` computes, drawn as `pkmws batch` draws it
       // (criteria files: the certified limited region; bodies: the real workspace).
-      io::write_file_atomic(a->out, file_figure(mech, compute_area(mech, 7)));
+      const AreaResult result = compute_area(mech, 7, &work);
+      if (result.report.contains("stopped")) refuse_stopped();
+      io::write_file_atomic(a->out, file_figure(mech, result));
       return 0;
     }
     // With criteria limits ([Briot] figs. 10, 13): the certified limited

@@ -164,7 +164,7 @@ def test_sobol_designs_fill_the_box(tmp_path):
 def test_task_fit_metric(tmp_path):
     m1 = json.loads(run("area", BASE, "--json").stdout)
     c = m1["components"][0]["inscribed_rectangle"]["box"]
-    cx, cy = (c[0][0] + c[1][0]) / 2, (c[0][1] + c[1][1]) / 2
+    cx, cy = (c["min"][0] + c["max"][0]) / 2, (c["min"][1] + c["max"][1]) / 2
     spec = write_spec(tmp_path, parameters=[
         {"name": "rod_length", "path": ["legs[0].rod_length", "legs[1].rod_length"], "values": [200, 250]}],
         metrics=["task_fit"], task={"center": [cx, cy], "size": [20, 20]})

@@ -86,6 +86,26 @@ std::string atlas_figure(const AtlasData& a) {
   const auto X = [&](double x) { return L + (x - x0) / (x1 - x0) * W; };
   const auto Y = [&](double y) { return T + H - (y - y0) / (y1 - y0) * H; };
   const auto z_at = [&](std::size_t i, std::size_t j) { return a.z[j * nx + i]; };
+  // Calls f(v, c) for every cell whose four corners have values: v and c
+  // the corner values and page points, counter-clockwise from (i, j).
+  const auto for_each_cell = [&](auto&& f) {
+    for (std::size_t j = 0; j + 1 < ny; ++j) {
+      for (std::size_t i = 0; i + 1 < nx; ++i) {
+        const std::optional<double> o[4] = {z_at(i, j), z_at(i + 1, j), z_at(i + 1, j + 1), z_at(i, j + 1)};
+        if (!o[0] || !o[1] || !o[2] || !o[3]) continue;
+        const double v[4] = {*o[0], *o[1], *o[2], *o[3]};
+        const P c[4] = {{X(a.xs[i]), Y(a.ys[j])}, {X(a.xs[i + 1]), Y(a.ys[j])}, {X(a.xs[i + 1]), Y(a.ys[j + 1])},
+                        {X(a.xs[i]), Y(a.ys[j + 1])}};
+        f(v, c);
+      }
+    }
+  };
+  // Where the value crosses t on edge k (linear along the edge).
+  const auto crossing = [](const double* v, const P* c, int k, double t) {
+    const int n = (k + 1) % 4;
+    const double f = (t - v[k]) / (v[n] - v[k]);
+    return P{c[k].x + f * (c[n].x - c[k].x), c[k].y + f * (c[n].y - c[k].y)};
+  };
 
   std::string svg;
   svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + px(page_w) + "\" height=\"" + px(page_h) +
@@ -111,24 +131,14 @@ std::string atlas_figure(const AtlasData& a) {
   for (std::size_t b = 0; b < bands; ++b) {
     const double t = b == 0 ? -std::numeric_limits<double>::infinity() : levels[b - 1];
     std::string d;
-    for (std::size_t j = 0; j + 1 < ny; ++j) {
-      for (std::size_t i = 0; i + 1 < nx; ++i) {
-        const std::optional<double> v[4] = {z_at(i, j), z_at(i + 1, j), z_at(i + 1, j + 1), z_at(i, j + 1)};
-        if (!v[0] || !v[1] || !v[2] || !v[3]) continue;
-        const P c[4] = {{a.xs[i], a.ys[j]}, {a.xs[i + 1], a.ys[j]}, {a.xs[i + 1], a.ys[j + 1]}, {a.xs[i], a.ys[j + 1]}};
-        std::vector<P> poly;
-        for (int k = 0; k < 4; ++k) {
-          const double va = *v[k], vb = *v[(k + 1) % 4];
-          if (va >= t) poly.push_back({X(c[k].x), Y(c[k].y)});
-          if ((va >= t) != (vb >= t)) {
-            const double f = (t - va) / (vb - va);
-            const P q{c[k].x + f * (c[(k + 1) % 4].x - c[k].x), c[k].y + f * (c[(k + 1) % 4].y - c[k].y)};
-            poly.push_back({X(q.x), Y(q.y)});
-          }
-        }
-        if (poly.size() >= 3) d += path_of(poly);
+    for_each_cell([&](const double* v, const P* c) {
+      std::vector<P> poly;
+      for (int k = 0; k < 4; ++k) {
+        if (v[k] >= t) poly.push_back(c[k]);
+        if ((v[k] >= t) != (v[(k + 1) % 4] >= t)) poly.push_back(crossing(v, c, k, t));
       }
-    }
+      if (poly.size() >= 3) d += path_of(poly);
+    });
     if (!d.empty()) {
       svg += "<path d=\"" + d + "\" fill=\"" + band_colour(bands > 1 ? static_cast<double>(b) / static_cast<double>(bands - 1) : 0.5) +
              "\"/>\n";
@@ -137,27 +147,18 @@ std::string atlas_figure(const AtlasData& a) {
   // Isolines, joined into polylines, each labelled at its middle.
   for (double t : levels) {
     std::vector<std::pair<P, P>> segs;
-    for (std::size_t j = 0; j + 1 < ny; ++j) {
-      for (std::size_t i = 0; i + 1 < nx; ++i) {
-        const std::optional<double> v[4] = {z_at(i, j), z_at(i + 1, j), z_at(i + 1, j + 1), z_at(i, j + 1)};
-        if (!v[0] || !v[1] || !v[2] || !v[3]) continue;
-        const P c[4] = {{a.xs[i], a.ys[j]}, {a.xs[i + 1], a.ys[j]}, {a.xs[i + 1], a.ys[j + 1]}, {a.xs[i], a.ys[j + 1]}};
-        std::vector<P> cross;
-        for (int k = 0; k < 4; ++k) {
-          const double va = *v[k], vb = *v[(k + 1) % 4];
-          if ((va >= t) != (vb >= t)) {
-            const double f = (t - va) / (vb - va);
-            cross.push_back({X(c[k].x + f * (c[(k + 1) % 4].x - c[k].x)), Y(c[k].y + f * (c[(k + 1) % 4].y - c[k].y))});
-          }
-        }
-        if (cross.size() == 2) segs.push_back({cross[0], cross[1]});
-        if (cross.size() == 4) {  // saddle: as the band polygons join the corners at or above t
-          const bool joined = *v[0] >= t;
-          segs.push_back(joined ? std::pair{cross[0], cross[1]} : std::pair{cross[0], cross[3]});
-          segs.push_back(joined ? std::pair{cross[2], cross[3]} : std::pair{cross[1], cross[2]});
-        }
+    for_each_cell([&](const double* v, const P* c) {
+      std::vector<P> cross;
+      for (int k = 0; k < 4; ++k) {
+        if ((v[k] >= t) != (v[(k + 1) % 4] >= t)) cross.push_back(crossing(v, c, k, t));
       }
-    }
+      if (cross.size() == 2) segs.push_back({cross[0], cross[1]});
+      if (cross.size() == 4) {  // saddle: as the band polygons join the corners at or above t
+        const bool joined = v[0] >= t;
+        segs.push_back(joined ? std::pair{cross[0], cross[1]} : std::pair{cross[0], cross[3]});
+        segs.push_back(joined ? std::pair{cross[2], cross[3]} : std::pair{cross[1], cross[2]});
+      }
+    });
     // Chain segments sharing end points (keys rounded to 1e-6 px).
     const auto key = [](P p) { return std::pair{std::llround(p.x * 1e6), std::llround(p.y * 1e6)}; };
     std::multimap<std::pair<long long, long long>, std::size_t> ends;
