@@ -1,6 +1,7 @@
 #include "pkmws/geometry/inscribed_rectangle.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -167,43 +168,32 @@ class Search {
   double slack_;
 };
 
-struct Cell {
-  double a0, b0, a1, b1;  // x0 in [a0, b0], x1 in [a1, b1]
-  double upper;
-};
-
-InscribedRectangle search_free_or_aspect(const Search& s, double precision, std::size_t max_evaluations) {
-  const Box& bb = s.bbox();
-  auto lower_ub = [](const Cell& a, const Cell& b) { return a.upper < b.upper; };
-  std::priority_queue<Cell, std::vector<Cell>, decltype(lower_ub)> queue(lower_ub);
+// Best-first branch and bound shared by the searches: `upper(c)` bounds every
+// rectangle of cell c, `candidate(c)` is one that fits (the lower bound),
+// `split(c)` halves c. Stops when the best bound left is within `precision`
+// of the best candidate, or after `max_evaluations` candidates.
+template <class C, class Upper, class Make, class Split>
+InscribedRectangle best_first(C root, Upper&& upper, Make&& candidate, Split&& split, double precision,
+                              std::size_t max_evaluations) {
+  auto lower_ub = [](const C& a, const C& b) { return a.upper < b.upper; };
+  std::priority_queue<C, std::vector<C>, decltype(lower_ub)> queue(lower_ub);
   InscribedRectangle out;
   Candidate best;
-  auto consider = [&](const Cell& c) {
+  auto consider = [&](const C& c) {
     ++out.evaluations;
-    const Candidate k = s.candidate(0.5 * (c.a0 + c.b0), 0.5 * (c.a1 + c.b1));
+    const Candidate k = candidate(c);
     if (k.area > best.area) best = k;
   };
-  Cell root{bb.min.x, bb.max.x, bb.min.x, bb.max.x, 0.0};
-  root.upper = s.upper(root.a0, root.b0, root.a1, root.b1);
+  root.upper = upper(root);
   consider(root);
   queue.push(root);
   while (!queue.empty()) {
-    const Cell top = queue.top();
+    const C top = queue.top();
     if (top.upper <= best.area || (top.upper - best.area) <= precision * top.upper) break;
     if (out.evaluations >= max_evaluations) break;
     queue.pop();
-    Cell halves[2] = {top, top};
-    if (top.b0 - top.a0 >= top.b1 - top.a1) {
-      const double m = 0.5 * (top.a0 + top.b0);
-      halves[0].b0 = m;
-      halves[1].a0 = m;
-    } else {
-      const double m = 0.5 * (top.a1 + top.b1);
-      halves[0].b1 = m;
-      halves[1].a1 = m;
-    }
-    for (Cell& h : halves) {
-      h.upper = s.upper(h.a0, h.b0, h.a1, h.b1);
+    for (C h : split(top)) {
+      h.upper = upper(h);
       if (h.upper <= best.area) continue;
       consider(h);
       queue.push(h);
@@ -215,53 +205,58 @@ InscribedRectangle search_free_or_aspect(const Search& s, double precision, std:
   return out;
 }
 
+struct Cell {
+  double a0, b0, a1, b1;  // x0 in [a0, b0], x1 in [a1, b1]
+  double upper;
+};
+
+InscribedRectangle search_free_or_aspect(const Search& s, double precision, std::size_t max_evaluations) {
+  const Box& bb = s.bbox();
+  return best_first(
+      Cell{bb.min.x, bb.max.x, bb.min.x, bb.max.x, 0.0},
+      [&](const Cell& c) { return s.upper(c.a0, c.b0, c.a1, c.b1); },
+      [&](const Cell& c) { return s.candidate(0.5 * (c.a0 + c.b0), 0.5 * (c.a1 + c.b1)); },
+      [](const Cell& c) {
+        std::array<Cell, 2> halves = {c, c};
+        if (c.b0 - c.a0 >= c.b1 - c.a1) {
+          halves[0].b0 = halves[1].a0 = 0.5 * (c.a0 + c.b0);
+        } else {
+          halves[0].b1 = halves[1].a1 = 0.5 * (c.a1 + c.b1);
+        }
+        return halves;
+      },
+      precision, max_evaluations);
+}
+
 InscribedRectangle search_width(const Prepared& prepared, double w, double precision,
                                 std::size_t max_evaluations) {
   const Box bb = prepared.bbox;
-  InscribedRectangle out;
-  if (w > bb.width()) return out;  // nothing of that width fits
+  if (w > bb.width()) return {};  // nothing of that width fits
   const double slack = 1e-12 * scale_of(bb);
   struct Interval {
-    double a, b, upper;
+    double a, b, upper;  // x0 in [a, b]
   };
-  auto upper = [&](double a, double b) {
-    const double h = b < a + w ? free_interval(prepared, b, a + w, slack).length() : bb.height();
-    return w * h;
-  };
-  auto lower_ub = [](const Interval& p, const Interval& q) { return p.upper < q.upper; };
-  std::priority_queue<Interval, std::vector<Interval>, decltype(lower_ub)> queue(lower_ub);
-  Candidate best;
-  auto consider = [&](const Interval& i) {
-    ++out.evaluations;
-    const double x0 = 0.5 * (i.a + i.b);
-    const FreeInterval f = free_interval(prepared, x0, x0 + w, -slack);
-    if (w * f.length() > best.area) {
-      best.area = w * f.length();
-      best.box.min = {x0, f.y0};
-      best.box.max = {x0 + w, f.y1};
-    }
-  };
-  Interval root{bb.min.x, bb.max.x - w, 0.0};
-  root.upper = upper(root.a, root.b);
-  consider(root);
-  queue.push(root);
-  while (!queue.empty()) {
-    const Interval top = queue.top();
-    if (top.upper <= best.area || (top.upper - best.area) <= precision * top.upper) break;
-    if (out.evaluations >= max_evaluations) break;
-    queue.pop();
-    const double m = 0.5 * (top.a + top.b);
-    for (Interval h : {Interval{top.a, m, 0.0}, Interval{m, top.b, 0.0}}) {
-      h.upper = upper(h.a, h.b);
-      if (h.upper <= best.area) continue;
-      consider(h);
-      queue.push(h);
-    }
-  }
-  out.box = best.box;
-  out.area = best.area;
-  out.area_upper = queue.empty() ? best.area : std::max(best.area, queue.top().upper);
-  return out;
+  return best_first(
+      Interval{bb.min.x, bb.max.x - w, 0.0},
+      [&](const Interval& i) {
+        return w * (i.b < i.a + w ? free_interval(prepared, i.b, i.a + w, slack).length() : bb.height());
+      },
+      [&](const Interval& i) {
+        const double x0 = 0.5 * (i.a + i.b);
+        const FreeInterval f = free_interval(prepared, x0, x0 + w, -slack);
+        Candidate k;
+        if (f.length() > 0.0) {
+          k.area = w * f.length();
+          k.box.min = {x0, f.y0};
+          k.box.max = {x0 + w, f.y1};
+        }
+        return k;
+      },
+      [](const Interval& i) {
+        const double m = 0.5 * (i.a + i.b);
+        return std::array<Interval, 2>{Interval{i.a, m, 0.0}, Interval{m, i.b, 0.0}};
+      },
+      precision, max_evaluations);
 }
 
 bool box_inside(const Region& region, const Box& box) {
