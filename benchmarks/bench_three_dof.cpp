@@ -9,18 +9,16 @@
 
 #include "bench_common.hpp"
 #include "pkmws/io/mechanism_file.hpp"
-#include "pkmws/mechanisms/three_rpr.hpp"
-#include "pkmws/mechanisms/three_rrp.hpp"
 
 namespace {
 
 using namespace pkmws;
 
-const mechanisms::ThreeRrp& mitsi() {
+// Through the interface: direct() is the closed form (with the limit checks);
+// the Elimination capability is the paper's method.
+const mechanisms::Mechanism& mitsi() {
   static const io::MechanismFile f = io::load_mechanism(bench::dataset("three_rrp_mitsi"));
-  const auto* m = dynamic_cast<const mechanisms::ThreeRrp*>(f.model.get());
-  if (!m) throw std::runtime_error("three_rrp_mitsi is not a 3-RRP");
-  return *m;
+  return *f.model;
 }
 
 const std::vector<double>& mitsi_joints() {
@@ -31,21 +29,20 @@ const std::vector<double>& mitsi_joints() {
 
 void assur_closed_form(benchmark::State& state) {
   const auto& m = mitsi();
-  for (auto _ : state) benchmark::DoNotOptimize(m.direct_closed_form(mitsi_joints()));
+  for (auto _ : state) benchmark::DoNotOptimize(m.direct(mitsi_joints()));
 }
 BENCHMARK(assur_closed_form)->Name("dk/three_rrp_mitsi/closed_form")->Unit(benchmark::kMicrosecond);
 
 void assur_elimination(benchmark::State& state) {
-  const auto& m = mitsi();
-  for (auto _ : state) benchmark::DoNotOptimize(m.direct_elimination(mitsi_joints()));
+  const auto elimination = mitsi().capability<mechanisms::Elimination>();
+  for (auto _ : state) benchmark::DoNotOptimize(elimination->elimination(mitsi_joints()));
 }
 BENCHMARK(assur_elimination)->Name("dk/three_rrp_mitsi/elimination")->Unit(benchmark::kMicrosecond);
 
 void rpr_sextic(benchmark::State& state) {
   static const io::MechanismFile f = io::load_mechanism(bench::dataset("three_rpr_prismatic"));
-  const auto& m = dynamic_cast<const mechanisms::ThreeRpr&>(*f.model);
-  const std::array<double, 3> rho{1.809, 1.142, 0.694};
-  for (auto _ : state) benchmark::DoNotOptimize(m.direct_from_lengths(rho));
+  const std::vector<double> rho{1.809, 1.142, 0.694};
+  for (auto _ : state) benchmark::DoNotOptimize(f.model->direct(rho));
 }
 BENCHMARK(rpr_sextic)->Name("dk/three_rpr_prismatic/sextic_6_poses")->Unit(benchmark::kMicrosecond);
 

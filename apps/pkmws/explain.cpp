@@ -176,7 +176,7 @@ std::vector<io::FigureOptions::Part> figure_parts(const io::MechanismFile& file,
           fp.fill = "#dfe6ea";
           fp.stroke = "#607d8b";
           fp.css_class = "part link-body";
-          fp.legend = std::string(part.proximal ? "proximal link" : (file.mechanism == "moma" ? "rod" : "link")) +
+          fp.legend = std::string(part.proximal ? "proximal link" : file.bodies->link_noun()) +
                       " body (\u2300 " + num(2 * part.radius) + " " + u + ")";
           break;
         case bodies::PartKind::platform_joint:

@@ -49,9 +49,7 @@ std::string file_figure(const io::MechanismFile& mech, const AreaResult& result)
     f.region_fill = "#e6e6e6";
     f.region_stroke = "#8a8a8a";
     // A 3-RPR without leg limits ([Briot]'s PAMINSA) has the plane as its workspace: the file's analysis window.
-    const auto* rpr = dynamic_cast<const mechanisms::ThreeRpr*>(mech.model.get());
-    const bool window = rpr && !rpr->leg_limits() && rpr->analysis_window();
-    const std::string domain = window ? "analysis window (no leg limits)" : "reachable workspace";
+    const std::string domain = mech.model->workspace_label();
     f.region_legend = domain + " (" + g10(reachable.area()) + " " + unit + ")";
     io::FigureOptions::Overlay limited;
     limited.rings = io::traced_inner_rings(result.limited->detail);

@@ -20,15 +20,6 @@ grid::Isa parse_isa(const std::string& s) {
   throw io::InputError("--isa: expected scalar, baseline, avx2, avx512 or best, got \"" + s + "\"");
 }
 
-/// Orientation of a 3-DOF file's constant-orientation workspace (radians), 0 otherwise.
-double file_orientation(const io::MechanismFile& mech) {
-  if (mech.model->dof() == 3 && mech.document.contains("orientation_deg") &&
-      mech.document["orientation_deg"].is_number()) {
-    return mech.document["orientation_deg"].get<double>() * std::numbers::pi / 180.0;
-  }
-  return 0.0;
-}
-
 }  // namespace
 
 void add_grid(CLI::App& app, std::vector<Command>& commands) {
@@ -84,7 +75,6 @@ void add_grid(CLI::App& app, std::vector<Command>& commands) {
     grid::Execution exec;
     exec.threads = o->threads;
     exec.isa = parse_isa(o->isa);
-    exec.phi = file_orientation(mech);
     const std::size_t n = o->cells;
     Json report{{"name", mech.name}, {"mechanism", mech.mechanism}, {"units", mech.units}, {"method", "grid"}};
     grid::SampleResult r;

@@ -1,6 +1,5 @@
 // pkmws ik / dk / eval: every working and assembly mode as JSON (docs/format.md (command line)).
 #include <cmath>
-#include <complex>
 #include <algorithm>
 #include <cstdio>
 #include <limits>
@@ -8,8 +7,6 @@
 
 #include "bodies_cli.hpp"
 #include "pkmws/io/export.hpp"
-#include "pkmws/mechanisms/three_rpr.hpp"
-#include "pkmws/mechanisms/three_rrp.hpp"
 
 namespace pkmws::cli {
 
@@ -29,82 +26,38 @@ std::string short_number(double v) {
   return buf;
 }
 
-Json complex_json(const std::vector<std::complex<double>>& roots) {
-  Json out = Json::array();
-  for (const auto& z : roots) out.push_back({z.real(), z.imag()});
+// dk's `elimination`: the eliminant of the mechanisms that have one
+// (capability Elimination), in one shape for every mechanism.
+Json elimination_json(const mechanisms::Elimination::Report& r) {
+  Json out{{"method", r.method}};
+  if (!r.variable.empty()) {
+    Json complex = Json::array();
+    for (const auto& z : r.complex_roots) complex.push_back({z.re, z.im});
+    out["variable"] = r.variable;
+    out["nominal_degree"] = r.nominal_degree;
+    out["degree"] = r.degree;
+    out["coefficients_ascending"] = r.coefficients_ascending;
+    out["real_roots"] = r.real_roots;
+    out["complex_roots"] = complex;
+  }
+  if (!r.solutions.empty()) {
+    Json sols = Json::array();
+    for (const auto& s : r.solutions) sols.push_back({{"values", s.values}, {"label", s.label}, {"residual", s.residual}});
+    out["solution_values"] = r.solution_values;
+    out["solutions"] = sols;
+  }
+  out["poses"] = r.poses;
+  out["continuum"] = r.continuum;
+  for (const auto& [key, value] : r.figures) out[key] = std::isfinite(value) ? Json(value) : Json(nullptr);
+  if (!r.note.empty()) out["note"] = r.note;
   return out;
-}
-
-// dk of the Assur-group mechanisms: the paper's elimination next to the closed
-// form ([Mitsi] eq. 9-18), so a user sees the eliminant, its true degree,
-// every root and how far the two methods are apart.
-Json assur_report(const mechanisms::ThreeRrp& m, const std::vector<double>& q) {
-  const auto e = m.direct_elimination(q);
-  const auto closed = m.direct_closed_form(q);
-  int degree = 0;
-  for (int k = 8; k >= 0; --k) {
-    if (e.eliminant[static_cast<std::size_t>(k)] != 0.0L) { degree = k; break; }
-  }
-  Json coeffs = Json::array();
-  for (long double c : e.eliminant) coeffs.push_back(static_cast<double>(c));
-  Json roots = Json::array();
-  for (const auto& r : e.real_roots) {
-    roots.push_back({{"s", {r.s[0], r.s[1], r.s[2]}}, {"assembly", r.assembled ? "platform" : "mirror image"},
-                     {"residual", r.residual}});
-  }
-  double difference = 0.0;
-  const bool same_count = closed.size() == e.assemblies.size();
-  if (same_count) {
-    for (std::size_t k = 0; k < closed.size(); ++k)
-      for (std::size_t i = 0; i < 3; ++i)
-        difference = std::max(difference, geometry::norm(closed[k].vertices[i] - e.assemblies[k].vertices[i]));
-  }
-  Json report{{"method", "Sylvester elimination of s2, s3 ([Mitsi] eq. 12-13)"},
-              {"variable", "sigma = s1 / L"},
-              {"length_scale_L", e.length_scale},
-              {"nominal_degree", 8},
-              {"computed_degree", degree},
-              {"true_degree", e.roots.degree},
-              {"eliminant_ascending", coeffs},
-              {"real_roots_s1", e.real_s1},
-              {"complex_roots_s1", complex_json(e.complex_s1)},
-              {"real_solutions", roots},
-              {"assemblies", e.assemblies.size()},
-              {"closed_form_assemblies", closed.size()},
-              {"max_vertex_difference", same_count ? Json(difference) : Json(nullptr)}};
-  if (!same_count) report["max_vertex_difference_reason"] = "the two methods found different numbers of assemblies";
-  return report;
-}
-
-Json rpr_report(const mechanisms::ThreeRpr& m, const std::vector<double>& q) {
-  const std::array<double, 3> v{q[0], q[1], q[2]};
-  if (m.actuation() == mechanisms::ThreeRprActuation::revolute) {
-    const auto d = m.direct_from_angles(v);
-    return Json{{"method", "base angles: linear in the platform position, one trigonometric equation in phi"},
-                {"poses", d.poses.size()},
-                {"continuum", d.continuum}};
-  }
-  const auto d = m.direct_from_lengths(v);
-  Json coeffs = Json::array();
-  for (long double c : d.eliminant) coeffs.push_back(static_cast<double>(c));
-  Json real = Json::array();
-  for (const auto& r : d.roots.real) real.push_back(r.value);
-  return Json{{"method", "sextic in t = tan((phi - phi0) / 2)"},
-              {"phi0_deg", d.phi_offset / deg},
-              {"degree", d.roots.degree},
-              {"eliminant_ascending", coeffs},
-              {"real_roots_t", real},
-              {"complex_roots_t", complex_json(d.roots.complex)},
-              {"poses", d.poses.size()},
-              {"continuum", d.continuum}};
 }
 
 // The constant-orientation workspace at phi where the mechanism has one
 // (empty when it is unbounded), for the per-assembly-mode figures.
 geometry::Region workspace_at(const mechanisms::Mechanism& m, double phi) {
   try {
-    if (const auto* r = dynamic_cast<const mechanisms::ThreeRrp*>(&m)) return r->workspace_at(phi);
-    if (const auto* r = dynamic_cast<const mechanisms::ThreeRpr*>(&m)) return r->workspace_at(phi);
+    if (const auto slice = m.capability<mechanisms::PoseSlice>()) return slice->workspace_at(phi);
     return m.workspace();
   } catch (const std::exception&) {
     return geometry::Region{};
@@ -260,10 +213,8 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands) {
     }
     out["solutions"] = sols;
     write_outputs(figures);
-    if (const auto* rrp = dynamic_cast<const mechanisms::ThreeRrp*>(mech.model.get())) {
-      out["elimination"] = assur_report(*rrp, q);
-    } else if (const auto* rpr = dynamic_cast<const mechanisms::ThreeRpr*>(mech.model.get())) {
-      out["eliminant"] = rpr_report(*rpr, q);
+    if (const auto elimination = mech.model->capability<mechanisms::Elimination>()) {
+      out["elimination"] = elimination_json(elimination->elimination(q));
     }
     print_json(out);
     return 0;

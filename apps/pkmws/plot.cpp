@@ -6,18 +6,17 @@
 #include "cli.hpp"
 #include "pkmws/io/export.hpp"
 #include "pkmws/io/plot.hpp"
-#include "pkmws/mechanisms/pi_joint.hpp"
 
 namespace pkmws::cli {
 
 std::vector<std::string> write_curve_figures(const io::MechanismFile& mech, const std::string& dir) {
-  const auto* joint = dynamic_cast<const mechanisms::PiJoint*>(mech.model.get());
-  if (!joint) {
-    throw io::InputError(mech.path + ": `plot` draws the curves of a pi_joint file; use `export` "
-                         "for the workspace of a " + mech.mechanism);
+  const auto charts = mech.model->capability<io::Charts>();
+  if (!charts) {
+    throw io::InputError(mech.path + ": `plot` draws the curves of a pi_joint file (" + charts.reason() +
+                         "); use `export` for the workspace of a " + mech.mechanism);
   }
   std::vector<std::string> files;
-  for (const auto& figure : mechanisms::pi_joint_figures(*joint)) {
+  for (const auto& figure : charts->charts()) {
     const std::string name = figure.stem + ".svg";
     io::write_file_atomic(std::filesystem::path(dir) / name, io::line_chart_svg(figure.chart));
     files.push_back(name);

@@ -9,7 +9,7 @@
 
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/mechanism_file.hpp"
-#include "pkmws/mechanisms/biglide.hpp"
+#include "mechanisms/biglide/criteria.hpp"
 
 namespace {
 

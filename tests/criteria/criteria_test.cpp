@@ -10,8 +10,8 @@
 #include <Eigen/Dense>
 
 #include "pkmws/criteria/fields.hpp"
-#include "pkmws/mechanisms/five_bar.hpp"
-#include "pkmws/mechanisms/three_rpr.hpp"
+#include "mechanisms/five_bar/criteria.hpp"
+#include "mechanisms/three_rpr/criteria.hpp"
 
 namespace {
 

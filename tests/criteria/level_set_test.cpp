@@ -11,8 +11,8 @@
 #include "pkmws/certified/template_field.hpp"
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/geometry/primitives.hpp"
-#include "pkmws/mechanisms/five_bar.hpp"
-#include "pkmws/mechanisms/three_rpr.hpp"
+#include "mechanisms/five_bar/criteria.hpp"
+#include "mechanisms/three_rpr/criteria.hpp"
 
 namespace {
 

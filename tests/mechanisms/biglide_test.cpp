@@ -12,7 +12,7 @@
 
 #include "pkmws/io/mechanism_file.hpp"
 #include "../support/load_error.hpp"
-#include "pkmws/mechanisms/biglide.hpp"
+#include "mechanisms/biglide/biglide.hpp"
 
 using namespace pkmws;
 using geometry::Point;

@@ -15,7 +15,7 @@
 #include "pkmws/geometry/primitives.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "../support/load_error.hpp"
-#include "pkmws/mechanisms/five_bar.hpp"
+#include "mechanisms/five_bar/five_bar.hpp"
 
 using namespace pkmws;
 using geometry::Point;

@@ -21,7 +21,7 @@
 
 #include "pkmws/geometry/primitives.hpp"
 #include "pkmws/io/mechanism_file.hpp"
-#include "pkmws/mechanisms/moma.hpp"
+#include "mechanisms/moma/moma.hpp"
 
 using namespace pkmws;
 using geometry::Point;

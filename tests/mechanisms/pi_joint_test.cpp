@@ -12,7 +12,7 @@
 #include "pkmws/io/mechanism_file.hpp"
 #include "pkmws/io/plot.hpp"
 #include "../support/load_error.hpp"
-#include "pkmws/mechanisms/pi_joint.hpp"
+#include "mechanisms/pi_joint/charts.hpp"
 
 using namespace pkmws;
 using mechanisms::PiJoint;

@@ -11,9 +11,9 @@
 
 #include <boost/multiprecision/cpp_int.hpp>
 
-#include "pkmws/mechanisms/assur_rprprp.hpp"
-#include "pkmws/mechanisms/three_rpr.hpp"
-#include "pkmws/mechanisms/three_rrp.hpp"
+#include "mechanisms/three_rrp/assur_rprprp.hpp"
+#include "mechanisms/three_rpr/three_rpr.hpp"
+#include "mechanisms/three_rrp/three_rrp.hpp"
 
 namespace {
 

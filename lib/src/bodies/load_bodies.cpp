@@ -22,14 +22,6 @@ using geometry::Point;
 
 constexpr double max_length = 1e15;
 
-double length(JsonReader& r, const std::string& key, bool positive) {
-  const double v = positive ? r.positive(key) : r.non_negative(key);
-  if (!(v <= max_length)) r.fail(key, "magnitude must not exceed 1e15");
-  return v;
-}
-
-std::vector<JsonReader> pair_of(JsonReader& r, const std::string& key) { return r.objects(key, 2); }
-
 int orient(Point a, Point b, Point c) {
   const double v = cross(b - a, c - a);
   return v > 0 ? 1 : (v < 0 ? -1 : 0);
@@ -71,6 +63,15 @@ std::vector<Point> read_polygon(JsonReader& r) {
   return pts;
 }
 
+
+}  // namespace
+
+double part_length(JsonReader& r, const std::string& key, bool positive) {
+  const double v = positive ? r.positive(key) : r.non_negative(key);
+  if (!(v <= max_length)) r.fail(key, "magnitude must not exceed 1e15");
+  return v;
+}
+
 Part leg_part(std::string name, PartKind kind, int leg) {
   Part p;
   p.name = std::move(name);
@@ -79,26 +80,37 @@ Part leg_part(std::string name, PartKind kind, int leg) {
   return p;
 }
 
-}  // namespace
+
+void read_capsules(JsonReader& bodies, const std::string& key, const std::string& stem, bool proximal,
+                   bodies::BodyModel& model) {
+  if (!bodies.has(key)) return;
+  auto items = bodies.objects(key, 2);
+  for (int i = 0; i < 2; ++i) {
+    auto& it = items[static_cast<std::size_t>(i)];
+    it.declare_fields({"radius"});
+    Part part = leg_part(stem + std::to_string(i + 1), PartKind::link, i);
+    part.proximal = proximal;
+    part.radius = part_length(it, "radius", false);
+    it.finish();
+    model.parts.push_back(part);
+  }
+}
 
 std::shared_ptr<const bodies::BodyRig> load_bodies(JsonReader& document,
                                                    const std::shared_ptr<const mechanisms::Mechanism>& mechanism) {
-  const std::string kind(mechanism->kind());
-  if (kind != "moma" && kind != "five_bar") {
-    document.fail("bodies", "bodies are supported for moma and five_bar mechanisms only");
-  }
+  const auto factory = mechanism->capability<bodies::RigFactory>();
+  if (!factory) document.fail("bodies", factory.reason());
   auto r = document.object("bodies");
-  if (kind == "moma") {
-    r.declare_fields({"platform_joint", "rods", "slider_blocks", "housings", "obstacles", "allowed_contacts"});
-  } else {
-    r.declare_fields({"platform_joint", "proximal", "distal", "obstacles", "allowed_contacts"});
-  }
+  std::vector<std::string> fields = {"platform_joint"};
+  for (auto& f : factory->part_fields()) fields.push_back(std::move(f));
+  fields.insert(fields.end(), {"obstacles", "allowed_contacts"});
+  r.declare_fields(fields);
   bodies::BodyModel model;
   if (r.has("platform_joint")) {
     auto p = r.object("platform_joint");
     p.declare_fields({"radius", "min_link_angle_deg"});
     Part part = leg_part("platform", PartKind::platform_joint, -1);
-    part.radius = length(p, "radius", false);
+    part.radius = part_length(p, "radius", false);
     if (p.has("min_link_angle_deg")) {
       const double a = p.number("min_link_angle_deg");
       if (!(a >= 0.0 && a < 180.0)) p.fail("min_link_angle_deg", "must lie in [0, 180) degrees");
@@ -107,54 +119,7 @@ std::shared_ptr<const bodies::BodyRig> load_bodies(JsonReader& document,
     p.finish();
     model.parts.push_back(part);
   }
-  auto capsules = [&](const std::string& key, const std::string& stem, bool proximal) {
-    if (!r.has(key)) return;
-    auto items = pair_of(r, key);
-    for (int i = 0; i < 2; ++i) {
-      auto& it = items[static_cast<std::size_t>(i)];
-      it.declare_fields({"radius"});
-      Part part = leg_part(stem + std::to_string(i + 1), PartKind::link, i);
-      part.proximal = proximal;
-      part.radius = length(it, "radius", false);
-      it.finish();
-      model.parts.push_back(part);
-    }
-  };
-  if (kind == "moma") {
-    capsules("rods", "rod", false);
-    if (r.has("slider_blocks")) {
-      auto items = pair_of(r, "slider_blocks");
-      for (int i = 0; i < 2; ++i) {
-        auto& it = items[static_cast<std::size_t>(i)];
-        it.declare_fields({"length", "width"});
-        Part part = leg_part("slider" + std::to_string(i + 1), PartKind::slider_block, i);
-        part.length = length(it, "length", false);
-        part.width = length(it, "width", false);
-        it.finish();
-        model.parts.push_back(part);
-      }
-    }
-    if (r.has("housings")) {
-      auto items = pair_of(r, "housings");
-      for (int i = 0; i < 2; ++i) {
-        auto& it = items[static_cast<std::size_t>(i)];
-        it.declare_fields({"extent", "width"});
-        Part part = leg_part("housing" + std::to_string(i + 1), PartKind::housing, i);
-        const auto e = it.interval("extent");
-        if (!(std::abs(e[0]) <= max_length && std::abs(e[1]) <= max_length)) {
-          it.fail("extent", "magnitude must not exceed 1e15");
-        }
-        part.from = e[0];
-        part.to = e[1];
-        part.width = length(it, "width", false);
-        it.finish();
-        model.parts.push_back(part);
-      }
-    }
-  } else {
-    capsules("proximal", "proximal", true);
-    capsules("distal", "distal", false);
-  }
+  factory->read_parts(r, model);
   if (r.has("obstacles")) {
     const auto& v = r.raw("obstacles");
     if (!v.is_array()) r.fail("obstacles", "expected an array of {name, polygon}");
@@ -191,7 +156,7 @@ std::shared_ptr<const bodies::BodyRig> load_bodies(JsonReader& document,
   }
   r.finish();
   try {
-    return bodies::BodyRig::make(mechanism, std::move(model));
+    return factory->make(mechanism, std::move(model));
   } catch (const std::invalid_argument& e) {
     throw InputError(document.field("bodies") + ": " + e.what());
   }

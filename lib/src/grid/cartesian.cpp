@@ -34,7 +34,7 @@ CartesianResult cartesian(const mechanisms::Mechanism& mechanism, const Cartesia
 
   // Blocks of whole rows, about 64k points each, fixed by the grid size only.
   const std::size_t rows_per_block = std::max<std::size_t>(1, (std::size_t{1} << 16) / nx);
-  const std::size_t work = nx * ny * (kernel.name() == "moma" ? 1 : 64);
+  const std::size_t work = nx * ny * (kernel.vectorised() ? 1 : 64);
   const std::size_t blocks = pkmws::detail::block_count(ny, rows_per_block);
   r.threads = pkmws::detail::threads_for(policy, blocks, work);
   std::vector<std::uint64_t> inside(blocks, 0);

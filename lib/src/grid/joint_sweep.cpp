@@ -17,41 +17,22 @@
 
 #include "grid/common.hpp"
 #include "pkmws/grid/sampler.hpp"
-#include "pkmws/mechanisms/biglide.hpp"
-#include "pkmws/mechanisms/five_bar.hpp"
-#include "pkmws/mechanisms/moma.hpp"
 
 namespace pkmws::grid {
 
 std::vector<std::pair<double, double>> default_joint_ranges(const mechanisms::Mechanism& m) {
+  // A joint's own travel where the file bounds it (strokes, crank limits), a
+  // full turn for a free angle.
   std::vector<std::pair<double, double>> ranges;
-  if (const auto* moma = dynamic_cast<const mechanisms::Moma*>(&m)) {
-    for (const auto& leg : moma->legs()) ranges.emplace_back(leg.stroke_min, leg.stroke_max);
-    return ranges;
-  }
-  if (const auto* biglide = dynamic_cast<const mechanisms::Biglide*>(&m)) {
-    for (const auto& s : biglide->params().strokes) ranges.emplace_back(s[0], s[1]);
-    return ranges;
-  }
-  if (const auto* five_bar = dynamic_cast<const mechanisms::FiveBar*>(&m)) {
-    for (int i = 0; i < 2; ++i) {
-      const auto& leg = five_bar->legs()[i];
-      if (leg.pi_joint) {
-        ranges.emplace_back(leg.pi_joint->stroke_min, leg.pi_joint->stroke_max);
-      } else if (const auto limits = five_bar->crank_limits(i)) {
-        ranges.emplace_back((*limits)[0], (*limits)[1]);
-      } else {
-        ranges.emplace_back(-std::numbers::pi, std::numbers::pi);
-      }
-    }
-    return ranges;
-  }
   for (const auto& j : m.joints()) {
-    if (!j.angle) {
+    if (j.range) {
+      ranges.emplace_back((*j.range)[0], (*j.range)[1]);
+    } else if (j.angle) {
+      ranges.emplace_back(-std::numbers::pi, std::numbers::pi);
+    } else {
       throw std::invalid_argument("joint-space sweep: no known range for joint " + j.name + " of " +
                                   std::string(m.kind()) + "; give the ranges");
     }
-    ranges.emplace_back(-std::numbers::pi, std::numbers::pi);
   }
   return ranges;
 }

@@ -13,7 +13,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "pkmws/mechanisms/moma.hpp"
 
 #if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
 #define PKMWS_X86_DISPATCH 1
@@ -284,19 +283,21 @@ std::vector<Isa> available_isas() {
 }
 
 MembershipKernel::MembershipKernel(const mechanisms::Mechanism& mechanism, KernelOptions options)
-    : mechanism_(&mechanism), options_(options) {
-  if (const auto* moma = dynamic_cast<const mechanisms::Moma*>(&mechanism)) {
+    : mechanism_(&mechanism), options_(options), phi_(options.phi.value_or(mechanism.orientation())) {
+  // The vectorised path: two rods on straight guides (MOMA), asked as a capability.
+  const auto guided = mechanism.capability<mechanisms::GuidedRodLegs>();
+  const auto legs = guided ? guided->guided_rod_legs() : std::vector<mechanisms::GuidedRodLegs::Leg>{};
+  if (legs.size() == 2) {
     moma_ = true;
     isa_ = resolve(options.isa);
     double scale = 0.0;
-    for (int i = 0; i < 2; ++i) {
-      const mechanisms::MomaLeg& src = moma->legs()[i];
-      const Point a = moma->guide_direction(i);  // the rational direction the exact workspace uses
+    for (std::size_t i = 0; i < 2; ++i) {
+      const auto& src = legs[i];
       Leg& g = legs_[i];
       g.rx = src.reference.x;
       g.ry = src.reference.y;
-      g.ax = a.x;
-      g.ay = a.y;
+      g.ax = src.direction.x;
+      g.ay = src.direction.y;
       g.t = -double(src.branch);
       g.lo = g.t > 0 ? src.stroke_min : -src.stroke_max;
       g.hi = g.t > 0 ? src.stroke_max : -src.stroke_min;
@@ -343,7 +344,7 @@ void MembershipKernel::row(double x0, double dx, std::size_t first, std::size_t 
   }
   for (std::size_t k = 0; k < n; ++k) {
     const double x = x0 + double(first + k) * dx;
-    mask[k] = std::uint8_t(mechanism_->reachable({x, y, options_.phi}));
+    mask[k] = std::uint8_t(mechanism_->reachable({x, y, phi_}));
   }
 }
 
@@ -355,7 +356,7 @@ std::uint64_t MembershipKernel::count_row(double x0, double dx, std::size_t firs
   std::uint64_t count = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const double x = x0 + double(first + k) * dx;
-    count += mechanism_->reachable({x, y, options_.phi}) ? 1 : 0;
+    count += mechanism_->reachable({x, y, phi_}) ? 1 : 0;
   }
   return count;
 }
@@ -365,7 +366,7 @@ void MembershipKernel::points(const double* x, const double* y, std::size_t n, s
     PKMWS_DISPATCH(points, legs_, x, y, n, mask)
   }
   for (std::size_t k = 0; k < n; ++k) {
-    mask[k] = std::uint8_t(mechanism_->reachable({x[k], y[k], options_.phi}));
+    mask[k] = std::uint8_t(mechanism_->reachable({x[k], y[k], phi_}));
   }
 }
 

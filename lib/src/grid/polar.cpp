@@ -60,7 +60,7 @@ PolarResult polar(const mechanisms::Mechanism& mechanism, const PolarOptions& op
   if (options.keep_mask) r.mask.assign(nr * ns, 0);
 
   const std::size_t rings_per_block = std::max<std::size_t>(1, (std::size_t{1} << 16) / ns);
-  const std::size_t work = nr * ns * (kernel.name() == "moma" ? 1 : 64);
+  const std::size_t work = nr * ns * (kernel.vectorised() ? 1 : 64);
   const std::size_t blocks = pkmws::detail::block_count(nr, rings_per_block);
   r.threads = pkmws::detail::threads_for(policy, blocks, work);
   std::vector<std::uint64_t> per_ring(nr, 0);

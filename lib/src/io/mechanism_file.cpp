@@ -7,32 +7,14 @@
 #include <sstream>
 
 #include "bodies/load_bodies.hpp"
-#include "io/loaders.hpp"
+#include "io/registry.hpp"
 
 namespace pkmws::io {
 
 namespace {
 
-using Loader = std::function<detail::MechanismPtr(detail::JsonReader&)>;
-
-struct Kind {
-  Loader load;
-  std::vector<std::string> fields;  // the kind's own top-level fields (docs/format.md), as the loader reads them
-};
-
-const std::map<std::string, Kind>& kinds() {
-  static const std::map<std::string, Kind> table = {
-      {"moma", {detail::load_moma, {"legs"}}},
-      {"five_bar", {detail::load_five_bar, {"base", "proximal", "distal", "working_mode", "actuator_limits_deg", "pi_joints"}}},
-      {"biglide", {detail::load_biglide, {"half_width", "rods", "stroke", "tool"}}},
-      {"pi_joint", {detail::load_pi_joint, {"crank_length", "k", "theta_limits_deg", "stroke", "actuator"}}},
-      {"three_rrp", {detail::load_three_rrp, {"base", "platform", "crank_lengths", "crank_limits_deg", "orientation_deg"}}},
-      {"three_prp", {detail::load_three_prp, {"base", "platform", "directions_deg", "strokes", "orientation_deg"}}},
-      {"three_rpr",
-       {detail::load_three_rpr, {"base", "platform", "actuation", "orientation_deg", "leg_limits", "analysis_window"}}},
-  };
-  return table;
-}
+using detail::find_kind;
+using detail::kinds;
 
 // The top-level fields a document may have: the common ones and its kind's, or
 // every kind's when `mechanism` does not name one (its own error comes next).
@@ -44,11 +26,11 @@ std::vector<std::string> top_level_fields(const nlohmann::json& document) {
     }
   };
   const auto m = document.find("mechanism");
-  const auto kind = m != document.end() && m->is_string() ? kinds().find(m->get<std::string>()) : kinds().end();
-  if (kind != kinds().end()) {
-    add(kind->second.fields);
+  const detail::Kind* kind = m != document.end() && m->is_string() ? find_kind(m->get<std::string>()) : nullptr;
+  if (kind) {
+    add(kind->fields);
   } else {
-    for (const auto& [_, k] : kinds()) add(k.fields);
+    for (const auto& k : kinds()) add(k.fields);
   }
   add({"bodies"});
   return fields;
@@ -100,7 +82,7 @@ MechanismFile parse_mechanism(const nlohmann::json& document, const std::string&
   file.document = document;
   file.name = doc.string("name");
   std::vector<std::string> names;
-  for (const auto& [k, _] : kinds()) names.push_back(k);
+  for (const auto& k : kinds()) names.push_back(k.keyword);
   file.mechanism = doc.one_of("mechanism", names);
   file.units = doc.one_of("units", {"mm", "m"});
   file.description = doc.optional_string("description").value_or("");
@@ -110,7 +92,7 @@ MechanismFile parse_mechanism(const nlohmann::json& document, const std::string&
     file.source = s;
   }
   file.criteria = read_criteria(doc, file.reaction_legs);
-  file.model = kinds().at(file.mechanism).load(doc);
+  file.model = find_kind(file.mechanism)->load(doc);
   if (doc.has("bodies")) file.bodies = detail::load_bodies(doc, file.model);
   for (int leg : file.reaction_legs) {
     if (leg > file.model->dof() || file.model->dof() < 2) {

@@ -38,4 +38,6 @@ certified::CertifiedRegion Mechanism::workspace_enclosure(int /*max_depth*/) con
 
 Drawing Mechanism::draw_with_joints(const Pose& pose, std::span<const double> /*joints*/) const { return draw(pose); }
 
+Offer Mechanism::provide(std::type_index /*which*/) const { return {}; }
+
 }  // namespace pkmws::mechanisms

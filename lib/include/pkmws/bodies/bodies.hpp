@@ -125,10 +125,8 @@ class BodyRig {
   virtual Shape fixed_part(std::size_t index) const = 0;
   /// Names of the two links meeting at the platform joint.
   virtual std::array<std::string, 2> joint_links() const = 0;
-
-  /// Builds the rig of a MOMA or five-bar mechanism; throws std::invalid_argument otherwise.
-  static std::shared_ptr<const BodyRig> make(std::shared_ptr<const mechanisms::Mechanism> mechanism,
-                                             BodyModel model);
+  /// What the mechanism calls a link that is not proximal, for legends ("rod", "link").
+  virtual std::string link_noun() const { return "link"; }
 
  protected:
   explicit BodyRig(BodyModel model) : model_(std::move(model)) {}

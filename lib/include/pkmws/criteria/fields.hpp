@@ -21,13 +21,11 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pkmws/certified/level_set.hpp"
 #include "pkmws/io/mechanism_file.hpp"
-#include "pkmws/mechanisms/biglide.hpp"
-#include "pkmws/mechanisms/five_bar.hpp"
-#include "pkmws/mechanisms/three_rpr.hpp"
 
 namespace pkmws::criteria {
 
@@ -54,21 +52,19 @@ struct CriterionField {
   std::string nowhere;
 };
 
-/// Five-bar (any link lengths, cranks without limits): α in degrees.
-CriterionField five_bar_pressure_angle(const mechanisms::FiveBar& mechanism);
-/// Five-bar reaction f / |sin ε| (N) for a force of norm `force_N`.
-CriterionField five_bar_reaction(const mechanisms::FiveBar& mechanism, double force_N);
-/// 3-RPR at its file orientation: R_i,max of leg `leg` (0-based), N.
-CriterionField three_rpr_reaction(const mechanisms::ThreeRpr& mechanism, const mechanisms::Load& load, int leg);
-/// 3-RPR assembly mode of `reference`: field -sign(det A(reference)) det A'
-/// (<= 0 on the side of the type-2 singularity curve that holds `reference`).
-CriterionField three_rpr_assembly_mode(const mechanisms::ThreeRpr& mechanism, geometry::Point reference);
-/// 3-RPR pressure angle α_i of leg `leg` (0-based), degrees.
-CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, int leg);
-
-/// Biglide velocity ratio V_i / V_y = |∂q_i/∂y| of leg `leg` (0-based; [Strutynskyi]
-/// fig. 8), paper's branches; surrogate (∂q_i/∂y)².
-CriterionField biglide_velocity_ratio(const mechanisms::Biglide& mechanism, int leg);
+/// Capability (Mechanism::capability): the criteria of a mechanism as fields.
+/// Each mechanism module implements it beside its kinematics.
+struct CriterionFields {
+  static constexpr std::string_view capability_name =
+      "certified criterion fields (level sets of the pressure angle, reaction or velocity ratio)";
+  virtual ~CriterionFields() = default;
+  /// The fields of criterion `name` ("pressure_angle", "reaction",
+  /// "velocity_ratio") for the file's criteria and reaction legs (1-based,
+  /// empty: every leg); throws std::invalid_argument with a one-line reason
+  /// when this mechanism cannot give them.
+  virtual std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& criteria,
+                                             const std::vector<int>& reaction_legs) const = 0;
+};
 
 /// The fields of a criterion for a mechanism file, one per limited leg (their
 /// sub-level sets are intersected; for the 3-RPR also the assembly mode of the

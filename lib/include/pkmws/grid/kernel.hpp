@@ -9,6 +9,7 @@
 // Mechanism::reachable, one virtual call per point.
 #pragma once
 
+#include <optional>
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -41,8 +42,8 @@ inline constexpr std::int8_t cell_inside = 1;
 struct KernelOptions {
   Isa isa = Isa::best;
   /// Platform orientation (radians) given to Mechanism::reachable by the
-  /// generic kernel; 2-DOF mechanisms ignore it.
-  double phi = 0.0;
+  /// generic kernel; 2-DOF mechanisms ignore it. Unset: Mechanism::orientation().
+  std::optional<double> phi;
 };
 
 /// Membership test of one mechanism's reachable workspace. Holds a pointer to
@@ -51,6 +52,8 @@ class MembershipKernel {
  public:
   explicit MembershipKernel(const mechanisms::Mechanism& mechanism, KernelOptions options = {});
 
+  /// True on the vectorised path (a mechanism with GuidedRodLegs), false per point.
+  bool vectorised() const { return moma_; }
   /// "moma" (vectorised fast path) or "generic" (Mechanism::reachable per point).
   std::string_view name() const;
   /// The instruction set in use (never `best`; `scalar` for the generic kernel).
@@ -96,6 +99,7 @@ class MembershipKernel {
  private:
   const mechanisms::Mechanism* mechanism_;
   KernelOptions options_;
+  double phi_ = 0.0;  // options_.phi or the mechanism's orientation
   Isa isa_ = Isa::scalar;
   bool moma_ = false;
   MomaLeg legs_[2];

@@ -31,8 +31,9 @@ struct Execution {
   /// 0: every hardware thread; 1: serial; K: K threads (a tbb::task_arena).
   int threads = 0;
   Isa isa = Isa::best;
-  /// Orientation (radians) for the generic kernel of 3-DOF mechanisms.
-  double phi = 0.0;
+  /// Orientation (radians) for the generic kernel of 3-DOF mechanisms;
+  /// unset: the mechanism's own (Mechanism::orientation(), the file's orientation_deg).
+  std::optional<double> phi;
 };
 
 /// One sampler run. `area_lower`/`area_upper` are set only when they are a

@@ -5,6 +5,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace pkmws::io {
@@ -40,5 +41,19 @@ std::vector<double> nice_ticks(double lo, double hi, int target = 6);
 /// Throws std::invalid_argument when no series has two finite points or a
 /// series' x and y sizes differ.
 std::string line_chart_svg(const LineChart& chart, int width = 760, int height = 500);
+
+/// A chart with the file stem it is written under.
+struct NamedChart {
+  std::string stem;  // e.g. "pi_joint_fig08_length"
+  LineChart chart;
+};
+
+/// Capability (Mechanism::capability): a mechanism whose study is a set of
+/// curves rather than a workspace (`pkmws plot`: the Π-joint's figures).
+struct Charts {
+  static constexpr std::string_view capability_name = "curve charts (pkmws plot draws the Pi-joint's)";
+  virtual ~Charts() = default;
+  virtual std::vector<NamedChart> charts() const = 0;
+};
 
 }  // namespace pkmws::io

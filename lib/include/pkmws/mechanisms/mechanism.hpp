@@ -2,7 +2,9 @@
 // mechanism file's length unit and in radians; the CLI converts angles to degrees.
 #pragma once
 
+#include <array>
 #include <optional>
+#include <typeindex>
 #include <span>
 #include <string>
 #include <string_view>
@@ -11,6 +13,7 @@
 #include "pkmws/certified/cell_region.hpp"
 #include "pkmws/geometry/region.hpp"
 #include "pkmws/geometry/types.hpp"
+#include "pkmws/mechanisms/capability.hpp"
 
 namespace pkmws::mechanisms {
 
@@ -28,6 +31,9 @@ struct Pose {
 struct JointInfo {
   std::string name;   // e.g. "p1", "theta1"
   bool angle = false; // radians inside, degrees in files and output
+  /// The joint's travel [min, max] where the file bounds it (stroke, crank
+  /// limits; radians for angles), absent where it is free or unknown.
+  std::optional<std::array<double, 2>> range;
 };
 
 /// One inverse-kinematics solution (one working mode).
@@ -135,6 +141,22 @@ class Mechanism {
   virtual double orientation() const { return 0.0; }
   /// A bounding box that contains the whole reachable workspace.
   virtual geometry::Box bounds() const = 0;
+  /// What workspace() is, in words, for legends: "reachable workspace", or the
+  /// file's analysis window where the mechanism has no limits of its own.
+  virtual std::string workspace_label() const { return "reachable workspace"; }
+
+  /// A capability only some mechanisms have (capability.hpp), or the reason
+  /// it is not available. Never cast to a concrete mechanism type: ask.
+  template <class C>
+  Capability<C> capability() const {
+    Offer offer = provide(std::type_index(typeid(C)));
+    if (offer.value) return Capability<C>(std::static_pointer_cast<const C>(offer.value));
+    if (offer.reason.empty()) offer.reason = std::string(kind()) + " has no " + std::string(C::capability_name);
+    return Capability<C>(std::move(offer.reason));
+  }
+  /// The hook behind capability<C>(): an Offer for the capability type `which`
+  /// (Offer::of / Offer::owned / Offer::refuse). Default: none.
+  virtual Offer provide(std::type_index which) const;
 };
 
 }  // namespace pkmws::mechanisms

@@ -1,0 +1,151 @@
+// Biglide velocity-ratio fields ([Strutynskyi] fig. 8), one per leg.
+#include "mechanisms/biglide/criteria.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "criteria/support.hpp"
+#include "pkmws/certified/template_field.hpp"
+
+namespace pkmws::criteria {
+
+using certified::CellState;
+using certified::Interval;
+using certified::Jet;
+using detail::deg;
+using detail::dist2;
+using detail::nan;
+using detail::pi;
+using geometry::Box;
+using geometry::Point;
+
+namespace {
+
+struct BiglideVelocityRatio {
+  double b = 0.0, l2 = 0.0, l3 = 0.0;
+  double m00 = 1.0, m01 = 0.0, m10 = 0.0, m11 = 1.0;
+  std::array<std::array<double, 2>, 2> stroke{};
+  int leg = 0;
+  static constexpr double b1 = -1.0, b2 = -1.0;  // [Strutynskyi] eq. 5-8: minus roots
+
+  explicit BiglideVelocityRatio(const mechanisms::Biglide& m, int leg_index) : leg(leg_index) {
+    const auto& p = m.params();
+    b = p.half_width;
+    l2 = p.rods[1];
+    l3 = m.tool_distance();
+    const double k = p.rods[0] / l3, c = std::cos(m.gamma()), s = std::sin(m.gamma());
+    m00 = k * c;
+    m01 = -k * s;
+    m10 = k * s;
+    m11 = k * c;
+    stroke = p.strokes;
+  }
+  template <class T> struct Parts {
+    T h1, w1sq, dq1, h2, w2sq, dq2;
+  };
+  template <class T> Parts<T> parts(const T& x, const T& y) const {
+    using certified::max;
+    using certified::sqr;
+    using certified::sqrt;
+    using std::sqrt;
+    Parts<T> r;
+    r.h1 = y + T(b);
+    r.w1sq = T(l3 * l3) - sqr(r.h1);
+    const T w1 = sqrt(max(r.w1sq, 0.0));
+    r.dq1 = T(-b1) * r.h1 / w1;
+    const T dvx = T(b1) * r.h1 / w1;
+    const T jy = T(-b) - T(b1 * m10) * w1 + T(m11) * r.h1;
+    const T djx = r.dq1 + T(m00) * dvx + T(m01);
+    const T djy = T(m10) * dvx + T(m11);
+    r.h2 = T(b) - jy;
+    r.w2sq = T(l2 * l2) - sqr(r.h2);
+    const T w2 = sqrt(max(r.w2sq, 0.0));
+    r.dq2 = djx + T(b2) * r.h2 * djy / w2;
+    (void)x;
+    return r;
+  }
+  template <class T> T eval(const T& x, const T& y) const {
+    const Parts<T> p = parts(x, y);
+    return certified::sqr(leg == 0 ? p.dq1 : p.dq2);
+  }
+  // Smooth where both rods are strictly off the perpendicular (w_i > 0).
+  CellState domain(const Box& box) const {
+    const Parts<Interval> p = parts(Interval(box.min.x, box.max.x), Interval(box.min.y, box.max.y));
+    if (p.w1sq.hi <= 0.0 || p.w2sq.hi <= 0.0) return CellState::outside;
+    return p.w1sq.lo > 0.0 && p.w2sq.lo > 0.0 ? CellState::inside : CellState::undecided;
+  }
+  // Box ⊆ workspace: the chain closes with both sliders inside their strokes.
+  CellState within(const Box& box) const {
+    using certified::max;
+    using certified::sqr;
+    using certified::sqrt;
+    const Interval x(box.min.x, box.max.x), y(box.min.y, box.max.y);
+    const Parts<Interval> p = parts(x, y);
+    if (p.w1sq.hi < 0.0 || p.w2sq.hi < 0.0) return CellState::outside;
+    const Interval w1 = sqrt(max(p.w1sq, 0.0));
+    const Interval q1 = x + Interval(b1) * w1;
+    const Interval jx = x + Interval(b1 * (1.0 - m00)) * w1 + Interval(m01) * p.h1;
+    const Interval q2 = jx + Interval(b2) * sqrt(max(p.w2sq, 0.0));
+    if (q1.hi < stroke[0][0] || q1.lo > stroke[0][1] || q2.hi < stroke[1][0] || q2.lo > stroke[1][1])
+      return CellState::outside;
+    const bool inside = p.w1sq.lo > 0.0 && p.w2sq.lo > 0.0 && q1.lo >= stroke[0][0] && q1.hi <= stroke[0][1] &&
+                        q2.lo >= stroke[1][0] && q2.hi <= stroke[1][1];
+    return inside ? CellState::inside : CellState::undecided;
+  }
+};
+
+}  // namespace
+
+CriterionField biglide_velocity_ratio(const mechanisms::Biglide& mechanism, int leg) {
+  const BiglideVelocityRatio impl(mechanism, leg);
+  CriterionField c;
+  c.name = "velocity_ratio";
+  c.unit = "V_i/V_y";
+  c.key = "biglide.vratio" + std::to_string(leg + 1);
+  c.surrogate = std::make_shared<certified::TemplateField<BiglideVelocityRatio>>(impl);
+  c.level = [](double ratio) { return ratio * ratio; };  // V_i/V_y <= t  <=>  (∂q_i/∂y)² <= t²
+  const mechanisms::Biglide* m = &mechanism;
+  c.value = [m, leg](Point p) {
+    if (!m->reachable({p.x, p.y, 0.0})) return nan;
+    return m->velocity_ratio_y(p)[static_cast<std::size_t>(leg)];
+  };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
+  return c;
+}
+
+
+namespace {
+
+// Capability criteria::CriterionFields of the biglide: the velocity ratio.
+class BiglideFields final : public CriterionFields {
+ public:
+  explicit BiglideFields(const mechanisms::Biglide* m) : m_(m) {}
+  std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& /*criteria*/,
+                                     const std::vector<int>& /*reaction_legs*/) const override {
+    if (name != "velocity_ratio") {
+      throw std::invalid_argument("for the biglide the certified level sets are of the velocity ratio "
+                                  "(criteria.max_velocity_ratio); pkmws eval gives pressure angles and reactions at a pose");
+    }
+    if (m_->real_scheme()) {
+      throw std::invalid_argument("velocity-ratio level sets need the exact workspace of the simplified "
+                                  "scheme; the real scheme's workspace is itself certified (coupler-curve boundary)");
+    }
+    return {biglide_velocity_ratio(*m_, 0), biglide_velocity_ratio(*m_, 1)};
+  }
+
+ private:
+  const mechanisms::Biglide* m_;
+};
+
+}  // namespace
+
+std::shared_ptr<const CriterionFields> biglide_fields(const mechanisms::Biglide& mechanism) {
+  return std::make_shared<BiglideFields>(&mechanism);
+}
+
+}  // namespace pkmws::criteria

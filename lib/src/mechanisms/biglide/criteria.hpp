@@ -1,0 +1,17 @@
+// The biglide module's criterion fields (capability criteria::CriterionFields).
+#pragma once
+
+#include <memory>
+
+#include "mechanisms/biglide/biglide.hpp"
+#include "pkmws/criteria/fields.hpp"
+
+namespace pkmws::criteria {
+
+/// Biglide velocity ratio V_i / V_y = |∂q_i/∂y| of leg `leg` (0-based; [Strutynskyi]
+/// fig. 8), paper's branches; surrogate (∂q_i/∂y)².
+CriterionField biglide_velocity_ratio(const mechanisms::Biglide& mechanism, int leg);
+/// The capability object (valid while `mechanism` lives).
+std::shared_ptr<const CriterionFields> biglide_fields(const mechanisms::Biglide& mechanism);
+
+}  // namespace pkmws::criteria

@@ -1,0 +1,181 @@
+// Five-bar criterion fields ([Briot]): the pressure angle and the reaction as
+// cos²ε from the closed-form inverse kinematics (docs/theory/level_sets.md).
+#include "mechanisms/five_bar/criteria.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "criteria/support.hpp"
+#include "pkmws/certified/template_field.hpp"
+
+namespace pkmws::criteria {
+
+using certified::CellState;
+using certified::Interval;
+using certified::Jet;
+using detail::deg;
+using detail::dist2;
+using detail::nan;
+using detail::pi;
+using geometry::Box;
+using geometry::Point;
+
+namespace {
+
+// Five-bar: cos ε from the inverse kinematics in closed form.
+//
+// Leg i, w = C - A_i, r² = |w|²: the elbow is B_i = A_i + a w + s b J w with
+// a = 1/2 + (l1² - l2²) / (2 r²), b = sqrt(D) / (2 r²),
+// D = ((l1 + l2)² - r²)(r² - (l1 - l2)²) (law of cosines, docs/theory/five_bar.md
+// eq. IK: cos β = (r² + l1² - l2²) / (2 r l1)), J the rotation by +90°, and
+// s the working mode (s = sign(w x (B_i - A_i))). Distal vector
+// u_i = C - B_i = (1 - a) w - s b J w; cos ε = u_1 . u_2 / (l12 l22).
+struct FiveBarCosEps {
+  std::array<Point, 2> base;
+  std::array<double, 2> l1, l2, s;
+  std::array<double, 2> r_out2, r_in2;
+
+  explicit FiveBarCosEps(const mechanisms::FiveBar& m) {
+    for (std::size_t i = 0; i < 2; ++i) {
+      const auto& leg = m.legs()[i];
+      base[i] = leg.base;
+      l1[i] = leg.proximal;
+      l2[i] = leg.distal;
+      s[i] = leg.working_mode;
+      r_out2[i] = (l1[i] + l2[i]) * (l1[i] + l2[i]);
+      r_in2[i] = (l1[i] - l2[i]) * (l1[i] - l2[i]);
+    }
+  }
+  template <class T> T cos_eps(const T& x, const T& y) const {
+    using certified::max;
+    using certified::sqr;
+    using std::sqrt;
+    using certified::sqrt;
+    std::array<T, 2> ux, uy;
+    for (std::size_t i = 0; i < 2; ++i) {
+      // Derived constants in T arithmetic, so that interval evaluations enclose
+      // their rounding too.
+      const T p = T(l1[i]), q = T(l2[i]);
+      const T wx = x - base[i].x, wy = y - base[i].y;
+      const T r2 = sqr(wx) + sqr(wy);
+      const T inv2r2 = 0.5 / r2;
+      const T one_minus_a = 0.5 - (p - q) * (p + q) * inv2r2;
+      const T d = (sqr(p + q) - r2) * (r2 - sqr(p - q));
+      const T b = sqrt(max(d, 0.0)) * inv2r2;
+      ux[i] = one_minus_a * wx + s[i] * (b * wy);
+      uy[i] = one_minus_a * wy - s[i] * (b * wx);
+    }
+    return (ux[0] * ux[1] + uy[0] * uy[1]) / (T(l2[0]) * T(l2[1]));
+  }
+  template <class T> T eval(const T& x, const T& y) const { return certified::sqr(cos_eps(x, y)); }
+  // Smooth where every leg is strictly inside its annulus (D > 0, r > 0).
+  CellState domain(const Box& b) const {
+    bool inside = true;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const Interval r2 = dist2(b, base[i]);
+      if (r2.lo > r_out2[i] || r2.hi < r_in2[i]) return CellState::outside;
+      inside = inside && r2.hi < r_out2[i] && r2.lo > r_in2[i] && r2.lo > 0.0;
+    }
+    return inside ? CellState::inside : CellState::undecided;
+  }
+};
+
+// ---------------------------------------------------------------------------
+// 3-RPR at a fixed orientation φ: B_j = P + c_j, c_j = R(φ) b'_j; leg vector
+// d_j = B_j - A_j = P - e_j, e_j = A_j - c_j. Unnormalised force direction n_j:
+// J d_j (revolute actuation: perpendicular to the leg) or d_j (prismatic).
+// Rows a_j = [n_j, c_j x n_j] (moments about P, [Briot]'s f_i), linear in P.
+// Column i of A^{-1} is (a_j x a_k) / det(a_0, a_1, a_2) ((i, j, k) cyclic), and
+// normalising row i by |n_i| = |d_i| = ρ_i multiplies it by ρ_i, so the twist
+// with only actuator i free is t_i = ρ_i (a_j x a_k) / det: v_P,i = its first two
+// components, ω_i the third (planar_transmission.hpp).
+
+double five_bar_alpha_deg(const FiveBarCosEps& f, Point p) {
+  if (f.domain(Box{p, p}) == CellState::outside) return nan;
+  const double ce = std::clamp(f.cos_eps<double>(p.x, p.y), -1.0, 1.0);
+  // α = acos|sin ε| = asin|cos ε| ([Briot]).
+  return std::asin(std::abs(ce)) / deg;
+}
+
+
+}  // namespace
+
+CriterionField five_bar_pressure_angle(const mechanisms::FiveBar& mechanism) {
+  const FiveBarCosEps impl(mechanism);
+  CriterionField c;
+  c.name = "pressure_angle";
+  c.unit = "deg";
+  c.threshold_max = 90.0;
+  c.key = "five_bar.cos2eps";
+  c.surrogate = std::make_shared<certified::TemplateField<FiveBarCosEps>>(impl);
+  // α <= α_max  <=>  |cos ε| <= sin α_max  <=>  cos²ε <= sin²α_max.
+  c.level = [](double alpha_deg) {
+    const double a = std::clamp(alpha_deg, 0.0, 90.0) * deg;
+    return std::sin(a) * std::sin(a);
+  };
+  c.value = [impl](Point p) { return five_bar_alpha_deg(impl, p); };
+  c.within_test = [impl](const Box& b) { return impl.domain(b); };
+  return c;
+}
+
+
+CriterionField five_bar_reaction(const mechanisms::FiveBar& mechanism, double force_N) {
+  const FiveBarCosEps impl(mechanism);
+  CriterionField c = five_bar_pressure_angle(mechanism);
+  c.name = "reaction";
+  c.unit = "N";
+  c.threshold_max = std::numeric_limits<double>::infinity();
+  // R = f / |sin ε| <= R_max  <=>  cos²ε <= 1 - (f / R_max)² (docs/theory/five_bar.md).
+  c.level = [force_N](double r_max) {
+    if (!(r_max > 0.0)) return -1.0;
+    const double q = force_N / r_max;
+    return q >= 1.0 ? (q == 1.0 ? 0.0 : -1.0) : 1.0 - q * q;
+  };
+  c.value = [impl, force_N](Point p) {
+    const double a = five_bar_alpha_deg(impl, p);
+    if (std::isnan(a)) return nan;
+    const double sin_eps = std::cos(a * deg);
+    return sin_eps > 0.0 ? force_N / sin_eps : std::numeric_limits<double>::infinity();
+  };
+  return c;
+}
+
+
+namespace {
+
+// Capability criteria::CriterionFields of a five-bar with freely rotating cranks.
+class FiveBarFields final : public CriterionFields {
+ public:
+  explicit FiveBarFields(const mechanisms::FiveBar* m) : m_(m) {}
+  std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& criteria,
+                                     const std::vector<int>& /*reaction_legs*/) const override {
+    if (name == "velocity_ratio") {
+      throw std::invalid_argument("velocity-ratio level sets are implemented for the biglide ([Strutynskyi]), not five_bar");
+    }
+    for (int i = 0; i < 2; ++i) {
+      if (m_->crank_limits(i)) {
+        throw std::invalid_argument("level sets of five-bars with crank limits are not supported "
+                                    "(the criterion fields assume freely rotating cranks)");
+      }
+    }
+    if (name == "pressure_angle") return {five_bar_pressure_angle(*m_)};
+    if (!criteria.load) throw std::invalid_argument("the reaction criterion needs criteria.load");
+    return {five_bar_reaction(*m_, criteria.load->force_N)};
+  }
+
+ private:
+  const mechanisms::FiveBar* m_;
+};
+
+}  // namespace
+
+std::shared_ptr<const CriterionFields> five_bar_fields(const mechanisms::FiveBar& mechanism) {
+  return std::make_shared<FiveBarFields>(&mechanism);
+}
+
+}  // namespace pkmws::criteria

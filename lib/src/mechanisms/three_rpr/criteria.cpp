@@ -1,0 +1,264 @@
+// 3-RPR criterion fields ([Briot]): reactions and pressure angles per leg from
+// the platform twists, and the assembly-mode constraint (docs/theory/three_dof.md).
+#include "mechanisms/three_rpr/criteria.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "criteria/support.hpp"
+#include "pkmws/certified/template_field.hpp"
+
+namespace pkmws::criteria {
+
+using certified::CellState;
+using certified::Interval;
+using certified::Jet;
+using detail::deg;
+using detail::dist2;
+using detail::nan;
+using detail::pi;
+using geometry::Box;
+using geometry::Point;
+
+namespace {
+
+struct ThreeRprTwist {
+  std::array<Point, 3> c, e;
+  bool revolute = true;
+  int leg = 0;
+  // Which quantity: 0 = R_i,max, 1 = |v_B_i|², 2 = -det_sign det A' (<= 0 in
+  // the assembly mode of the reference point: no type-2 singularity crossed).
+  int what = 0;
+  double det_sign = 1.0;
+  double f = 0.0, m = 0.0;
+  std::optional<Box> window;
+  std::optional<std::array<std::array<double, 2>, 3>> limits;
+
+  ThreeRprTwist(const mechanisms::ThreeRpr& mech, int leg_index, int quantity, const mechanisms::Load& load)
+      : revolute(mech.actuation() == mechanisms::ThreeRprActuation::revolute), leg(leg_index), what(quantity),
+        f(load.force_N), m(std::abs(load.moment_Nm)), window(mech.analysis_window()), limits(mech.leg_limits()) {
+    const double phi = mech.orientation();
+    for (std::size_t j = 0; j < 3; ++j) {
+      const Point b = mech.platform()[j];
+      c[j] = {std::cos(phi) * b.x - std::sin(phi) * b.y, std::sin(phi) * b.x + std::cos(phi) * b.y};
+      e[j] = mech.base()[j] - c[j];
+    }
+  }
+
+  template <class T> struct Parts {
+    T det, w0, w1, w2, rho2;
+  };
+  template <class T> Parts<T> parts(const T& x, const T& y) const {
+    std::array<std::array<T, 3>, 3> a;
+    std::array<T, 3> rho2;
+    for (std::size_t j = 0; j < 3; ++j) {
+      const T dx = x - e[j].x, dy = y - e[j].y;
+      T nx = dx, ny = dy;
+      if (revolute) {
+        nx = -dy;
+        ny = dx;
+      }
+      a[j][0] = nx;
+      a[j][1] = ny;
+      a[j][2] = c[j].x * ny - c[j].y * nx;  // (B_j - P) x n_j = c_j x n_j
+      rho2[j] = certified::sqr(dx) + certified::sqr(dy);
+    }
+    const auto i = static_cast<std::size_t>(leg);
+    const std::size_t j = (i + 1) % 3, k = (i + 2) % 3;
+    Parts<T> p;
+    p.w0 = a[j][1] * a[k][2] - a[j][2] * a[k][1];
+    p.w1 = a[j][2] * a[k][0] - a[j][0] * a[k][2];
+    p.w2 = a[j][0] * a[k][1] - a[j][1] * a[k][0];
+    p.det = a[i][0] * p.w0 + a[i][1] * p.w1 + a[i][2] * p.w2;
+    p.rho2 = rho2[i];
+    return p;
+  }
+  template <class T> T eval(const T& x, const T& y) const {
+    using certified::sqr;
+    using certified::sqrt;
+    using std::abs;
+    using std::sqrt;
+    using certified::abs;
+    const Parts<T> p = parts(x, y);
+    if (what == 2) return -det_sign * p.det;
+    if (what == 1) {
+      // v_B_i = v_P + ω J c_i: |v_B_i|² = ρ_i² |(w0 - w2 c_iy, w1 + w2 c_ix)|² / det².
+      const Point ci = c[static_cast<std::size_t>(leg)];
+      const T vx = p.w0 - ci.y * p.w2, vy = p.w1 + ci.x * p.w2;
+      return p.rho2 * (sqr(vx) + sqr(vy)) / sqr(p.det);
+    }
+    // docs/theory/three_dof.md: R_i,max = f |v_P,i| + |m| |ω_i|.
+    const T num = f * sqrt(sqr(p.w0) + sqr(p.w1)) + m * abs(p.w2);
+    return sqrt(p.rho2) * num / abs(p.det);
+  }
+  CellState domain(const Box& b) const {
+    if (what == 2) return CellState::inside;  // a polynomial
+    const Parts<Interval> p = parts(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y));
+    if (p.det.contains_zero() || p.rho2.lo <= 0.0) return CellState::undecided;
+    return CellState::inside;
+  }
+  // Box ⊆ workspace: inside the window and the leg annuli.
+  CellState within(const Box& b) const {
+    bool inside = true;
+    if (window) {
+      if (b.max.x < window->min.x || b.min.x > window->max.x || b.max.y < window->min.y || b.min.y > window->max.y)
+        return CellState::outside;
+      inside = b.min.x >= window->min.x && b.max.x <= window->max.x && b.min.y >= window->min.y && b.max.y <= window->max.y;
+    }
+    if (limits) {
+      for (std::size_t j = 0; j < 3; ++j) {
+        const Interval r2 = dist2(b, e[j]);
+        const double lo2 = (*limits)[j][0] * (*limits)[j][0], hi2 = (*limits)[j][1] * (*limits)[j][1];
+        if (r2.lo > hi2 || r2.hi < lo2) return CellState::outside;
+        inside = inside && r2.hi < hi2 && r2.lo > lo2;
+      }
+    }
+    return inside ? CellState::inside : CellState::undecided;
+  }
+};
+
+// True when det A' vanishes to rounding at every position (the PAMINSA at
+// cos phi = R_p / R_b, docs/theory/three_dof.md): a cubic in (x, y) that is
+// below 1e-9 of Hadamard's bound (product of the row norms) at 25 points in
+// general position over `box` is the zero polynomial up to rounding.
+bool singular_everywhere(const ThreeRprTwist& t, const Box& box) {
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      const double x = box.min.x + box.width() * (i + 0.31831) / 5.0;
+      const double y = box.min.y + box.height() * (j + 0.57722) / 5.0;
+      double bound = 1.0;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const double n = std::hypot(x - t.e[k].x, y - t.e[k].y);
+        bound *= n * std::sqrt(1.0 + t.c[k].x * t.c[k].x + t.c[k].y * t.c[k].y);
+      }
+      if (!(std::abs(t.parts<double>(x, y).det) <= 1e-9 * bound)) return false;
+    }
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------------------
+// Biglide velocity ratio V_i / V_y = |∂q_i/∂y| ([Strutynskyi] fig. 8) for the
+// paper's branches b_1 = b_2 = -1 (eq. 5-8), docs/theory/biglide.md:
+//   h1 = y + B, w1 = sqrt(l3² - h1²), ∂q1/∂y = -b1 h1 / w1,
+//   ∂v/∂y = (b1 h1 / w1, 1), ∂J/∂y = (∂q1/∂y, 0) + M ∂v/∂y,
+//   J_y = -B - b1 w1 M10 + M11 h1, h2 = B - J_y, w2 = sqrt(l2² - h2²),
+//   ∂q2/∂y = ∂J_x/∂y + b2 h2 ∂J_y/∂y / w2,
+// M = (l1 / l3) R(γ) (identity for the simplified scheme). Surrogate:
+// s_i = (∂q_i/∂y)², level(t) = t².
+}  // namespace
+
+CriterionField three_rpr_reaction(const mechanisms::ThreeRpr& mechanism, const mechanisms::Load& load, int leg) {
+  if (leg < 0 || leg > 2) throw std::invalid_argument("three_rpr_reaction: leg must be 0, 1 or 2");
+  const ThreeRprTwist impl(mechanism, leg, 0, load);
+  CriterionField c;
+  c.name = "reaction";
+  c.unit = "N";
+  c.key = "three_rpr.reaction" + std::to_string(leg);
+  c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
+  c.level = [](double r) { return r; };
+  c.value = [impl](Point p) { return impl.eval<double>(p.x, p.y); };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
+  return c;
+}
+
+CriterionField three_rpr_assembly_mode(const mechanisms::ThreeRpr& mechanism, Point reference) {
+  ThreeRprTwist impl(mechanism, 0, 2, mechanisms::Load{});
+  const double d = impl.parts<double>(reference.x, reference.y).det;
+  if (!(d != 0.0) || !std::isfinite(d)) {
+    throw std::invalid_argument("three_rpr_assembly_mode: the reference point is type-2 singular");
+  }
+  impl.det_sign = d > 0.0 ? 1.0 : -1.0;
+  CriterionField c;
+  c.name = "assembly_mode";
+  c.unit = "";
+  c.key = "three_rpr.assembly";
+  c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
+  c.level = [](double) { return 0.0; };
+  c.value = [impl](Point p) { return impl.eval<double>(p.x, p.y); };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
+  return c;
+}
+
+CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, int leg) {
+  if (leg < 0 || leg > 2) throw std::invalid_argument("three_rpr_pressure_angle: leg must be 0, 1 or 2");
+  const ThreeRprTwist impl(mechanism, leg, 1, mechanisms::Load{});
+  CriterionField c;
+  c.name = "pressure_angle";
+  c.unit = "deg";
+  c.threshold_max = 90.0;
+  c.key = "three_rpr.vb2_" + std::to_string(leg);
+  c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
+  // [Briot]: cos α_i = |r_i . v_i| / |v_i| = 1 / |v_i|  =>  α_i <= α  <=>  |v_i|² <= 1 / cos²α.
+  c.level = [](double alpha_deg) {
+    const double ca = std::cos(std::clamp(alpha_deg, 0.0, 90.0) * deg);
+    return ca > 0.0 ? 1.0 / (ca * ca) : std::numeric_limits<double>::infinity();
+  };
+  c.value = [impl](Point p) {
+    const double v2 = impl.eval<double>(p.x, p.y);
+    if (!std::isfinite(v2)) return 90.0;
+    return std::acos(std::min(1.0, 1.0 / std::sqrt(v2))) / deg;
+  };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
+  return c;
+}
+
+
+namespace {
+
+// Capability criteria::CriterionFields of the 3-RPR at its file orientation.
+class ThreeRprFields final : public CriterionFields {
+ public:
+  explicit ThreeRprFields(const mechanisms::ThreeRpr* m) : m_(m) {}
+  std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& criteria,
+                                     const std::vector<int>& reaction_legs) const override {
+    const mechanisms::ThreeRpr& rpr = *m_;
+    if (name == "velocity_ratio") {
+      throw std::invalid_argument("velocity-ratio level sets are implemented for the biglide ([Strutynskyi]), not three_rpr");
+    }
+    if (!rpr.leg_limits() && !rpr.analysis_window()) {
+      throw std::invalid_argument("three_rpr level sets need leg_limits or an analysis_window");
+    }
+    std::vector<int> legs = reaction_legs;
+    if (legs.empty()) legs = {1, 2, 3};
+    std::vector<CriterionField> out;
+    for (int leg : legs) {
+      if (name == "reaction") {
+        if (!criteria.load) throw std::invalid_argument("the reaction criterion needs criteria.load");
+        out.push_back(three_rpr_reaction(rpr, *criteria.load, leg - 1));
+      } else {
+        out.push_back(three_rpr_pressure_angle(rpr, leg - 1));
+      }
+    }
+    // The platform stays in the assembly mode of the workspace's centre (it
+    // cannot cross the type-2 singularity, [Briot] fig. 12's dashed curve).
+    const geometry::Box b = rpr.bounds();
+    if (singular_everywhere(ThreeRprTwist(rpr, 0, 2, mechanisms::Load{}), b)) {
+      // Reactions and pressure angles are infinite at every position: every
+      // sub-level set is empty, known without refining anything.
+      for (auto& f : out) {
+        f.nowhere = "the 3-RPR is type-2 singular at every position at this orientation (cos phi = R_p / R_b): " +
+                    f.name + " is infinite everywhere";
+      }
+      return out;
+    }
+    out.push_back(three_rpr_assembly_mode(rpr, {0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)}));
+    return out;
+  }
+
+ private:
+  const mechanisms::ThreeRpr* m_;
+};
+
+}  // namespace
+
+std::shared_ptr<const CriterionFields> three_rpr_fields(const mechanisms::ThreeRpr& mechanism) {
+  return std::make_shared<ThreeRprFields>(&mechanism);
+}
+
+}  // namespace pkmws::criteria

@@ -1,0 +1,21 @@
+// The three_rpr module's criterion fields (capability criteria::CriterionFields).
+#pragma once
+
+#include <memory>
+
+#include "mechanisms/three_rpr/three_rpr.hpp"
+#include "pkmws/criteria/fields.hpp"
+
+namespace pkmws::criteria {
+
+/// 3-RPR at its file orientation: R_i,max of leg `leg` (0-based), N.
+CriterionField three_rpr_reaction(const mechanisms::ThreeRpr& mechanism, const mechanisms::Load& load, int leg);
+/// 3-RPR assembly mode of `reference`: field -sign(det A(reference)) det A'
+/// (<= 0 on the side of the type-2 singularity curve that holds `reference`).
+CriterionField three_rpr_assembly_mode(const mechanisms::ThreeRpr& mechanism, geometry::Point reference);
+/// 3-RPR pressure angle α_i of leg `leg` (0-based), degrees.
+CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, int leg);
+/// The capability object (valid while `mechanism` lives).
+std::shared_ptr<const CriterionFields> three_rpr_fields(const mechanisms::ThreeRpr& mechanism);
+
+}  // namespace pkmws::criteria
