@@ -742,8 +742,13 @@ PYBIND11_MODULE(_pkmws, mod) {
         return out;
       }, py::arg("tolerance") = py::none())
       .def("default_tolerance", [](const PyRegion& r) { return default_tolerance(r.region); })
-      .def("contains", &contains, py::arg("points"))
-      .def("geo_interface", &geo_interface, py::arg("tolerance") = py::none())
+      .def("contains", &contains, py::arg("points"),
+           "Exact membership (boundary inside): (x, y) -> bool, or an (N, 2) array -> (N,) bool array\n"
+           "(any dtype or strides; looped in C++ without the GIL).")
+      .def("geo_interface", &geo_interface, py::arg("tolerance") = py::none(),
+           "GeoJSON MultiPolygon dict (the exporter's polygons, valid in GEOS's model) with vertices on\n"
+           "the exact curves, at most `tolerance` (file's unit; default 1e-6 of the diagonal) from them;\n"
+           "its area is within area_error_bound(tolerance) of .area.")
       .def("area_error_bound", [](const PyRegion& r, std::optional<double> tolerance) {
         return r.region.empty() ? 0.0 : io::polyline_area_error_bound(r.region, export_options(r, tolerance));
       }, py::arg("tolerance") = py::none())
@@ -834,15 +839,32 @@ PYBIND11_MODULE(_pkmws, mod) {
       .def("_get", &get_parameter, py::arg("path"))
       .def("_with", &with_parameters, py::arg("values"))
       .def("_assign", [](PyMechanism& self, const PyMechanism& other) { self.file = other.file; })
-      .def("inverse", &inverse, py::arg("x"), py::arg("y"), py::arg("phi") = py::none())
-      .def("direct", &direct, py::arg("q"))
-      .def("evaluate", &evaluate, py::arg("x"), py::arg("y"), py::arg("phi") = py::none())
-      .def("inverse_many", &inverse_many, py::arg("poses"))
-      .def("direct_many", &direct_many, py::arg("q"))
-      .def("evaluate_many", &evaluate_many, py::arg("poses"))
-      .def("reachable", &reachable, py::arg("poses"))
-      .def("workspace", &workspace, py::arg("bound") = py::none())
-      .def("workspace_area_bounds", &workspace_area_bounds)
+      .def("inverse", &inverse, py::arg("x"), py::arg("y"), py::arg("phi") = py::none(),
+           "Inverse kinematics at the pose (x, y in the file's unit; phi in radians, default: the file's\n"
+           "orientation; for the 1-DOF Pi-joint phi is the crank angle). One dict per working mode, the\n"
+           "file's first: mode, joints (prismatic: file's unit; revolute: radians), valid, reason.")
+      .def("direct", &direct, py::arg("q"),
+           "Direct kinematics for dof joint values q (file's unit / radians). One dict per assembly mode:\n"
+           "mode, pose (x, y, phi in radians), platform_points (3-DOF), valid, reason.")
+      .def("evaluate", &evaluate, py::arg("x"), py::arg("y"), py::arg("phi") = py::none(),
+           "Every criterion at the pose (as `pkmws eval`), one dict per working mode; angles in radians\n"
+           "(pressure_angle per leg), reactions in N with the file's criteria.load.")
+      .def("inverse_many", &inverse_many, py::arg("poses"),
+           "Vectorised inverse for the file's working mode: poses (N, 2) or (N, 3) [x, y(, phi rad)] ->\n"
+           "(joints (N, dof) float64, NaN where none; valid (N,) bool). Loops in C++ without the GIL.")
+      .def("direct_many", &direct_many, py::arg("q"),
+           "Vectorised direct kinematics: q (N, dof) -> (poses (N, 3) [x, y, phi rad] of the first valid\n"
+           "assembly mode, NaN where none; valid (N,) bool).")
+      .def("evaluate_many", &evaluate_many, py::arg("poses"),
+           "Vectorised evaluate for the file's working mode: dict of arrays reachable, jacobian_det,\n"
+           "condition_number, singular, pressure_angle (N, legs; radians), velocity_ratio (NaN: undefined).")
+      .def("reachable", &reachable, py::arg("poses"),
+           "The grid baseline's double membership test: one pose (x, y[, phi]) -> bool, or (N, 2)/(N, 3) -> bool array.")
+      .def("workspace", &workspace, py::arg("bound") = py::none(),
+           "The exact reachable workspace (3-DOF: at the file's orientation) as a Region, lengths in the\n"
+           "file's unit. Certified workspaces (real-scheme biglide) need bound='inner' or 'outer'.")
+      .def("workspace_area_bounds", &workspace_area_bounds,
+           "(lower, upper) containing the true area (file's unit squared), as `pkmws area`.")
       .def("limited_area", [](const PyMechanism& m, double tolerance, int threads) {
         const auto lw = limited(m, tolerance, false, threads);
         return py::make_tuple(lw.region.area_lower, lw.region.area_upper);
