@@ -4,6 +4,7 @@ Needs the module on PYTHONPATH (CTest sets it to build/python)."""
 import json
 import math
 import os
+import sys
 import pathlib
 import subprocess
 
@@ -366,3 +367,22 @@ def test_sweep_errors():
         pkmws.sweep(M1, [{"path": "legs[0].rod", "values": [200]}])
     assert "pkmws-sweep-" not in str(e.value)  # no scratch file names
     assert "area" in pkmws.metric_names()
+
+
+def test_cmake_install_puts_an_importable_package_in_site_packages(tmp_path):
+    build_python = next((pathlib.Path(p) for p in os.environ.get("PYTHONPATH", "").split(os.pathsep)
+                         if (pathlib.Path(p) / "pkmws" / "__init__.py").exists()), None)
+    if build_python is None:
+        pytest.skip("the module is not imported from a build tree")
+    prefix = tmp_path / "prefix"
+    subprocess.run(["cmake", "--install", str(build_python.parent), "--prefix", str(prefix)], check=True,
+                   capture_output=True)
+    inits = list(prefix.glob("lib/python3*/*-packages/pkmws/__init__.py"))
+    assert len(inits) == 1, list(prefix.rglob("__init__.py"))
+    site = inits[0].parents[1]
+    assert (site / "pkmws" / "__init__.pyi").exists() and (site / "pkmws" / "plot.py").exists()
+    env = dict(os.environ, PYTHONPATH=str(site))
+    out = subprocess.run([sys.executable, "-c", f"import pkmws; print(pkmws.__file__); "
+                          f"print(pkmws.load({str(M1)!r}).workspace().area)"],
+                         env=env, check=True, capture_output=True, text=True).stdout.split()
+    assert out[0].startswith(str(site)) and float(out[1]) == pytest.approx(M1_AREA, rel=1e-13)
