@@ -64,27 +64,41 @@ std::vector<Step> parse_path(const std::string& path, const std::string& where) 
   return steps;
 }
 
+template <class Json>
+Json& walk_path(Json& document, const std::string& path, const std::string& where, const std::string& missing) {
+  const std::vector<Step> steps = parse_path(path, where);
+  Json* node = &document;
+  for (const Step& s : steps) {
+    if (s.key.empty()) {
+      if (!node->is_array() || s.index >= node->size()) throw InputError(where + ": '" + path + "' " + missing);
+      node = &node->at(s.index);
+    } else {
+      if (!node->is_object() || !node->contains(s.key)) throw InputError(where + ": '" + path + "' " + missing);
+      node = &node->at(s.key);
+    }
+  }
+  return *node;
+}
+
+}  // namespace
+
+json& field_at(json& document, const std::string& path, const std::string& where, const std::string& missing) {
+  return walk_path(document, path, where, missing);
+}
+
+const json& field_at(const json& document, const std::string& path, const std::string& where,
+                     const std::string& missing) {
+  return walk_path(document, path, where, missing);
+}
+
+namespace {
+
 // Sets the number at `path` in `doc`; the field must be in the base file (a
 // sweep varies what the file states; add an optional field there to vary it).
 void set_path(json& doc, const std::string& path, double value, const std::string& where) {
-  const std::vector<Step> steps = parse_path(path, where);
-  json* node = &doc;
-  for (std::size_t k = 0; k < steps.size(); ++k) {
-    const Step& s = steps[k];
-    if (s.key.empty()) {
-      if (!node->is_array() || s.index >= node->size()) {
-        throw InputError(where + ": '" + path + "' is not in the base file");
-      }
-      node = &(*node)[s.index];
-    } else {
-      if (!node->is_object() || !node->contains(s.key)) {
-        throw InputError(where + ": '" + path + "' is not in the base file");
-      }
-      node = &(*node)[s.key];
-    }
-  }
-  if (!node->is_null() && !node->is_number()) throw InputError(where + ": '" + path + "' is not a number");
-  *node = value;
+  json& node = field_at(doc, path, where, "is not in the base file");
+  if (!node.is_null() && !node.is_number()) throw InputError(where + ": '" + path + "' is not a number");
+  node = value;
 }
 
 struct MetricInfo {

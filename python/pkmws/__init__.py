@@ -1,0 +1,234 @@
+"""pkmws: exact workspaces of planar parallel mechanisms, from Python.
+
+Units, everywhere in this module:
+
+* lengths (poses, coordinates, prismatic joints, areas in length²) are in the
+  mechanism file's unit (``Mechanism.units``: ``"mm"`` or ``"m"``);
+* every angle is in **radians**: the orientation ``phi``, angle joints,
+  pressure angles, arc sweeps. Only the file's own fields (``document``,
+  ``parameters``, e.g. ``legs[0].guide_angle_deg``) keep the file's degrees.
+
+Every input error (missing file, unknown field, bad value, wrong array shape)
+raises ``ValueError`` with the command line's one-line message.
+
+    >>> import pkmws
+    >>> m = pkmws.load("datasets/moma_m1_g0_l250.json")
+    >>> round(m.workspace().area, 4)
+    36202.1833
+"""
+from __future__ import annotations
+
+import json as _json
+import os as _os
+import tempfile as _tempfile
+from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
+
+from . import _pkmws
+from ._pkmws import Component, Curve, Loop, Mechanism, Region
+
+__all__ = ["load", "sweep", "metric_names", "Mechanism", "Region", "Component", "Loop", "Curve", "Parameters"]
+__version__ = "0.1.0"
+
+
+def load(source: Union[str, "_os.PathLike[str]", Mapping[str, Any]]) -> Mechanism:
+    """Load a mechanism file (a path) or a mechanism document (a dict).
+
+    The document is validated by the library's loader, exactly as
+    ``pkmws info FILE``: a bad file raises ``ValueError`` with the loader's
+    one-line message naming the file (``"<dict>"`` for a dict) and the field,
+    e.g. ``m.json: legs[0].rod_length: must be positive (got -250.0)``.
+    """
+    if isinstance(source, Mapping):
+        try:
+            text = _json.dumps(source, allow_nan=False)
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"<dict>: not a JSON document ({e})") from None
+        return _pkmws._load_document(text, "<dict>")
+    if isinstance(source, (str, bytes, _os.PathLike)):
+        path = _os.fsdecode(_os.fspath(source))
+        return _pkmws._load_path(path)
+    raise ValueError(f"load: expected a file path or a dict, got {type(source).__name__}")
+
+
+class Parameters:
+    """The numbers of a mechanism's file by field path (``"legs[1].rod_length"``).
+
+    Reading gives the file's value (``int``, ``float`` or ``None`` for a
+    null). Assigning **updates the mechanism in place**: the file's document
+    with the new value is validated again by the loader; on error a
+    ``ValueError`` with the loader's one-line message is raised and the
+    mechanism is unchanged. ``Mechanism.with_parameters`` gives a new
+    mechanism instead. Values are in the file's units (lengths in its unit,
+    ``*_deg`` fields in degrees).
+    """
+
+    _SKIP = ("name", "mechanism", "units", "description", "source")
+
+    def __init__(self, mechanism: Mechanism) -> None:
+        self._m = mechanism
+
+    def __getitem__(self, path: str) -> Optional[Union[int, float]]:
+        return self._m._get(path)
+
+    def __setitem__(self, path: str, value: Union[int, float]) -> None:
+        self._m._assign(self._m._with({path: value}))
+
+    def update(self, values: Mapping[str, Union[int, float]]) -> None:
+        """Set several values at once (one validation: they may depend on each other)."""
+        self._m._assign(self._m._with(dict(values)))
+
+    def keys(self) -> List[str]:
+        """Every numeric field path of the document (``source`` and text fields left out)."""
+        out: List[str] = []
+
+        def walk(node: Any, prefix: str) -> None:
+            if isinstance(node, dict):
+                for k, v in node.items():
+                    if prefix == "" and k in self._SKIP:
+                        continue
+                    walk(v, f"{prefix}.{k}" if prefix else k)
+            elif isinstance(node, list):
+                for i, v in enumerate(node):
+                    walk(v, f"{prefix}[{i}]")
+            elif isinstance(node, (int, float)) and not isinstance(node, bool):
+                out.append(prefix)
+
+        walk(self._m.document, "")
+        return out
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.keys())
+
+    def __len__(self) -> int:
+        return len(self.keys())
+
+    def __contains__(self, path: object) -> bool:
+        return path in self.keys()
+
+    def items(self) -> List[Tuple[str, Union[int, float]]]:
+        return [(k, self[k]) for k in self.keys()]  # type: ignore[misc]
+
+    def as_dict(self) -> Dict[str, Union[int, float]]:
+        return dict(self.items())
+
+    def __repr__(self) -> str:
+        return f"Parameters({self.as_dict()!r})"
+
+
+def _parameters(self: Mechanism) -> Parameters:
+    return Parameters(self)
+
+
+def _with_parameters(self: Mechanism, values: Optional[Mapping[str, Union[int, float]]] = None,
+                     **kwargs: Union[int, float]) -> Mechanism:
+    """A new, validated mechanism with the values set (``self`` is unchanged)."""
+    merged = dict(values or {})
+    merged.update(kwargs)
+    return self._with(merged)
+
+
+def _mechanism_repr(self: Mechanism) -> str:
+    return f"<pkmws.Mechanism {self.kind} {self.name!r} ({self.units}, {self.dof} DOF)>"
+
+
+def _largest(items: List[Dict[str, Any]], key: str) -> Optional[Dict[str, Any]]:
+    return max(items, key=lambda d: d[key]) if items else None
+
+
+def _inscribed_circle(self: Region, precision: Optional[float] = None) -> Optional[Dict[str, Any]]:
+    """The largest inscribed circle over the components: ``center``, ``radius``
+    (a circle of that radius fits) and ``radius_upper`` (none larger fits), in
+    the file's unit; ``None`` for an empty region."""
+    return _largest(self.inscribed_circles(precision), "radius")
+
+
+def _inscribed_rectangle(self: Region, precision: float = 1e-6, aspect: Optional[float] = None,
+                         width: Optional[float] = None) -> Optional[Dict[str, Any]]:
+    """The largest axis-aligned inscribed rectangle over the components: ``min``,
+    ``max``, ``width``, ``height``, ``area`` (certified lower bound, the box is
+    inside), ``area_upper`` (no larger rectangle fits), ``verified``."""
+    return _largest(self.inscribed_rectangles(precision, aspect, width), "area")
+
+
+def _geo(self: Region) -> Dict[str, Any]:
+    return self.geo_interface()
+
+
+def _region_repr(self: Region) -> str:
+    if self.empty:
+        return "<pkmws.Region empty>"
+    unit = f" {self.units}²" if self.units else ""
+    return f"<pkmws.Region area {self.area:.10g}{unit}, {len(self.components())} component(s)>"
+
+
+Mechanism.parameters = property(_parameters, doc=Parameters.__doc__)  # type: ignore[attr-defined]
+Mechanism.with_parameters = _with_parameters  # type: ignore[attr-defined]
+Mechanism.__repr__ = _mechanism_repr  # type: ignore[method-assign]
+Region.inscribed_circle = _inscribed_circle  # type: ignore[attr-defined]
+Region.inscribed_rectangle = _inscribed_rectangle  # type: ignore[attr-defined]
+Region.__geo_interface__ = property(_geo, doc="GeoJSON MultiPolygon (valid in GEOS's model) at the default tolerance")  # type: ignore[attr-defined]
+Region.__repr__ = _region_repr  # type: ignore[method-assign]
+
+
+def metric_names() -> List[str]:
+    """The metrics a sweep can compute (``pkmws sweep``'s ``metrics``)."""
+    return list(_pkmws._metric_names())
+
+
+def sweep(base: Union[str, "_os.PathLike[str]", Mapping[str, Any], Mechanism, None] = None,
+          parameters: Optional[Sequence[Mapping[str, Any]]] = None, *,
+          metrics: Optional[Sequence[str]] = None, sampling: Optional[str] = None,
+          samples: Optional[int] = None, task: Optional[Mapping[str, Any]] = None,
+          rectangle_precision: Optional[float] = None, criteria_tolerance: Optional[float] = None,
+          interference_depth: Optional[int] = None, spec: Union[str, "_os.PathLike[str]", None] = None,
+          threads: int = 0) -> List[Dict[str, Any]]:
+    """Evaluate metrics over a design space, as ``pkmws sweep`` does.
+
+    ``base`` is the mechanism every design starts from (a path, a dict or a
+    ``Mechanism``); ``parameters`` are the sweep file's parameters, e.g.
+    ``{"name": "rod", "path": ["legs[0].rod_length", "legs[1].rod_length"],
+    "from": 150, "to": 300, "steps": 16}`` or ``{"path": "...", "values": [...]}``
+    (values in the file's units). The other keywords are the sweep file's
+    fields (docs/design_space.md). Alternatively ``spec`` names a sweep file.
+
+    Returns one dict per design, ordered by index, with the CSV's columns
+    (``index``, the parameters, ``status``, metric columns -- ``None`` where
+    not computed --, ``time_ms``, ``reason``): ``pandas.DataFrame(rows)``
+    accepts it. A bad design is a row with its status, never an exception; a
+    bad sweep (unknown field or metric, path not in the file) raises
+    ``ValueError`` with the command line's message.
+    """
+    if spec is not None:
+        if base is not None or parameters is not None:
+            raise ValueError("sweep: give either spec or base and parameters")
+        return _pkmws._run_sweep(_os.fsdecode(_os.fspath(spec)), threads)[1]
+    if base is None or parameters is None:
+        raise ValueError("sweep: base and parameters are required")
+    doc: Dict[str, Any] = {"parameters": list(parameters)}
+    for key, value in (("metrics", metrics), ("sampling", sampling), ("samples", samples), ("task", task),
+                       ("rectangle_precision", rectangle_precision),
+                       ("criteria_tolerance", criteria_tolerance), ("interference_depth", interference_depth)):
+        if value is not None:
+            doc[key] = list(value) if key == "metrics" else value
+    with _tempfile.TemporaryDirectory(prefix="pkmws-sweep-") as tmp:
+        if isinstance(base, Mechanism):
+            base = base.document
+        if isinstance(base, Mapping):
+            base_path = _os.path.join(tmp, "base.json")
+            with open(base_path, "w", encoding="utf-8") as f:
+                _json.dump(base, f, allow_nan=False)
+        else:
+            base_path = _os.path.abspath(_os.fsdecode(_os.fspath(base)))
+        doc["base"] = base_path
+        spec_path = _os.path.join(tmp, "sweep.json")
+        try:
+            text = _json.dumps(doc, allow_nan=False)
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"sweep: not a JSON document ({e})") from None
+        with open(spec_path, "w", encoding="utf-8") as f:
+            f.write(text)
+        try:
+            return _pkmws._run_sweep(spec_path, threads)[1]
+        except ValueError as e:
+            # Name the sweep as the caller gave it, not the scratch file.
+            raise ValueError(str(e).replace(spec_path, "<sweep>").replace(tmp + _os.sep, "")) from None
