@@ -18,6 +18,7 @@ void add_atlas(CLI::App& app, std::vector<Command>& commands) {
   struct Args {
     std::string csv, x, y, metric, out, title, x_label, y_label, metric_label;
     bool minimize = false;
+    bool json = false;
   };
   auto a = std::make_shared<Args>();
   sub->add_option("CSV", a->csv, "Output of pkmws sweep (a grid over at least two parameters)")->required();
@@ -30,6 +31,7 @@ void add_atlas(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--y-label", a->y_label, "Vertical axis title with unit (default: the column name)");
   sub->add_option("--metric-label", a->metric_label, "Colour bar title with unit (default: the column name)");
   sub->add_flag("--minimize", a->minimize, "Mark the smallest value instead of the largest");
+  sub->add_flag("--json", a->json, "Print one JSON object (docs/schema/atlas.output.schema.json)");
   commands.push_back({sub, [a] {
     std::ifstream in(a->csv);
     if (!in) throw io::InputError(a->csv + ": cannot open");
@@ -85,6 +87,14 @@ void add_atlas(CLI::App& app, std::vector<Command>& commands) {
       throw io::InputError(a->csv + ": " + e.what());
     }
     io::write_file_atomic(a->out, svg);
+    if (a->json) {
+      std::size_t missing = 0;
+      for (const auto& z : d.z) missing += z ? 0 : 1;
+      print_json(Json{{"csv", a->csv}, {"x", a->x}, {"y", a->y}, {"metric", a->metric}, {"output", a->out},
+                      {"columns", d.xs.size()}, {"rows", d.ys.size()}, {"cells_without_value", missing},
+                      {"marked", a->minimize ? "smallest" : "largest"}});
+      return 0;
+    }
     std::printf("atlas of %s over %zu x %zu designs -> %s\n", a->metric.c_str(), d.xs.size(), d.ys.size(),
                 a->out.c_str());
     return 0;

@@ -29,10 +29,12 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
   struct Args {
     std::vector<std::string> files;
     std::string out;
+    bool json = false;
   };
   auto a = std::make_shared<Args>();
   sub->add_option("FILES", a->files, "Mechanism files (JSON)")->required();
   sub->add_option("--out,-o", a->out, "Output directory (created if missing)")->required();
+  sub->add_flag("--json", a->json, "Print one JSON object: the summary rows (docs/schema/batch.output.schema.json)");
   commands.push_back({sub, [a] {
     namespace fs = std::filesystem;
     std::error_code ec;
@@ -84,6 +86,7 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
         }
         note = "limited by " + limits + " (reachable " + fmt("%.10g", criteria::criteria_domain(mech).area()) + ")";
         row["components"] = nullptr;  // not enumerated for certified level sets
+        row["components_reason"] = "not enumerated for a criteria-limited workspace (certified level sets)";
       } else if (result.real) {
         note = "real: " + io::interval_text(result.real->real.area_lower, result.real->real.area_upper, 10) + " (" +
                result.real->real.method() + ")";
@@ -97,13 +100,19 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
       md += "| " + stem + " | " + mech.name + " | " + mech.mechanism + " | " + fmt("%.10g", area) + " | " + bounds +
             " | " + area_unit(mech) + " | " + method + " | " + comps + " | " + fmt("%.1f", rep["time_ms"].get<double>()) +
             " | [" + svg + "](" + svg + ") | " + note + " |\n";
-      std::printf("%-34s %18.10g %s  %s\n", stem.c_str(), area, area_unit(mech).c_str(),
-                  method == "exact" ? "exact" : ("certified " + io::interval_text(lo, hi, 10)).c_str());
+      if (!a->json) {
+        std::printf("%-34s %18.10g %s  %s\n", stem.c_str(), area, area_unit(mech).c_str(),
+                    method == "exact" ? "exact" : ("certified " + io::interval_text(lo, hi, 10)).c_str());
+      }
     }
     md += std::string("\ncompute time: ") + kComputeTimeMeaning +
           " (the `time_ms` of `pkmws area --json`, one file at a time).\n";
     io::write_file_atomic(fs::path(a->out) / "summary.md", md);
     io::write_file_atomic(fs::path(a->out) / "summary.json", rows.dump(2) + "\n");
+    if (a->json) {
+      print_json(Json{{"output_dir", a->out}, {"summary", "summary.json"}, {"rows", rows}});
+      return 0;
+    }
     std::size_t figures = 0;
     for (const auto& row : rows) figures += row.contains("figure") ? 1 : 0;
     std::printf("wrote %zu figures and summary.md to %s (%zu files without a planar workspace are listed with the reason)\n",

@@ -122,6 +122,10 @@ mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Regi
 /// rectangle is searched there, so that it fits the true workspace.
 Json region_report(const geometry::Region& region, double min_area, double rectangle_precision = 1e-6,
                    const geometry::Region* inside = nullptr);
+/// The joints of the file's mechanism (docs/format.md (output vocabulary)):
+/// `joint_names` (in the order `dk` takes them) and `joint_units` (name -> "deg"
+/// or the file's length unit).
+Json joint_vocabulary(const io::MechanismFile& file);
 /// Length unit squared, e.g. "mm²".
 std::string area_unit(const io::MechanismFile& file);
 

@@ -272,6 +272,15 @@ certified::CertifiedRegion workspace_enclosure_of(const io::MechanismFile& file)
   }
 }
 
+Json joint_vocabulary(const io::MechanismFile& file) {
+  Json names = Json::array(), units = Json::object();
+  for (const auto& j : file.model->joints()) {
+    names.push_back(j.name);
+    units[j.name] = j.angle ? "deg" : file.units;
+  }
+  return Json{{"joint_names", names}, {"joint_units", units}};
+}
+
 std::string area_unit(const io::MechanismFile& file) { return file.units + "²"; }
 
 namespace {

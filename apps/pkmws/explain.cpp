@@ -209,6 +209,7 @@ void add_explain(CLI::App& app, std::vector<Command>& commands) {
     if (!mech.bodies) throw io::InputError(a->file + ": the file lists no `bodies` (docs/format.md (bodies)): nothing can collide");
     Json out = collisions_json(mech, {x, y});
     out["name"] = mech.name;
+    out["mechanism"] = mech.mechanism;
     out["point"] = {x, y};
     out["units"] = mech.units;
     if (a->json) {

@@ -24,10 +24,12 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     std::string bound;
     std::string criterion, levels;
     double max_time = 0.0;
+    bool json = false;
   };
   auto a = std::make_shared<Args>();
   sub->add_option("FILE", a->file, "Mechanism file (JSON)")->required();
   sub->add_option("--format,-f", a->format, "svg | dxf | wkt | geojson | csv")->required();
+  sub->add_flag("--json", a->json, "Print one JSON object about the file written (docs/schema/export.output.schema.json)");
   sub->add_option("-o,--output", a->out, "Output file")->required();
   auto* tolerance_option = sub->add_option(
       "--tolerance", a->tolerance,
@@ -56,6 +58,20 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     // Certified regions (criteria limits, bands): a bound stops the work with
     // exit 2 and no file (an export does not carry a `stopped` label).
     const CertifiedWork work("export", a->max_time);
+    // --json: what was written (the file itself is the output).
+    auto done = [&a](const io::MechanismFile& mech, const std::string& content, const std::string& bound) {
+      if (!a->json) return 0;
+      Json j{{"name", mech.name}, {"mechanism", mech.mechanism}, {"units", mech.units}, {"format", a->format},
+             {"output", a->out}, {"content", content}};
+      if (bound.empty()) {
+        j["bound"] = nullptr;
+        j["bound_reason"] = "the region is exact (or a figure), not one of two enclosures";
+      } else {
+        j["bound"] = bound;
+      }
+      print_json(j);
+      return 0;
+    };
     auto refuse_stopped = [&work] {
       throw io::InputError("--max-time: " + work.stopped_note() + "; nothing written (give more time)");
     };
@@ -70,7 +86,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
           bands_export(mech, a->criterion, a->levels, format == io::ExportFormat::svg, 1e-4, &work, &stopped);
       if (stopped) refuse_stopped();
       io::write_file_atomic(a->out, content);
-      return 0;
+      return done(mech, "bands of " + a->criterion, "");
     }
     const bool tolerance_given = tolerance_option->count() > 0;
     if (tolerance_given && !(a->tolerance > 0.0 && std::isfinite(a->tolerance))) {
@@ -83,7 +99,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       const AreaResult result = compute_area(mech, 7, &work);
       if (result.report.contains("stopped")) refuse_stopped();
       io::write_file_atomic(a->out, file_figure(mech, result));
-      return 0;
+      return done(mech, "figure", "");
     }
     // With criteria limits ([Briot] figs. 10, 13): the certified limited
     // region, its enclosures built at cell resolution.
@@ -169,7 +185,8 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       case io::ExportFormat::csv: content = io::to_csv(region, options); break;
     }
     io::write_file_atomic(a->out, content);
-    return 0;
+    return done(mech, format == io::ExportFormat::svg && !a->bare ? "figure" : "boundary",
+                enclosure.exact && !a->real ? "" : bound);
   }});
 }
 

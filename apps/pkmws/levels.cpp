@@ -213,9 +213,10 @@ void add_levels(CLI::App& app, std::vector<Command>& commands) {
     const BandRun run = run_bands(mech, a->criterion, levels, a->tolerance, &work);
     Json j;
     j["name"] = mech.name;
+    j["mechanism"] = mech.mechanism;
+    j["units"] = mech.units;  // lengths; areas in units² (docs/format.md (output vocabulary))
     j["criterion"] = a->criterion;
-    j["unit"] = run.field.unit;
-    j["area_unit"] = area_unit(mech);
+    j["criterion_units"] = run.field.unit;  // of the levels `from` and `to`
     Json bands = Json::array();
     for (std::size_t k = 0; k < run.bands.size(); ++k) {
       const auto& b = run.bands[k];

@@ -44,6 +44,19 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
+    // Name the command and what it expects (its positional values), e.g.
+    // "area: The following argument was not expected: 5 (expected: pkmws area FILE [options])".
+    for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+      if (!sub->parsed()) continue;
+      std::string usage;
+      for (const auto* o : sub->get_options([](const CLI::Option* o) { return o->get_positional(); })) {
+        const std::string name = o->get_name(true, false);
+        usage += " " + (o->get_required() ? name : "[" + name + "]");
+      }
+      std::cerr << "pkmws: error: " << sub->get_name() << ": " << e.what() << " (expected: pkmws " << sub->get_name()
+                << usage << " [options]; see pkmws " << sub->get_name() << " --help)\n";
+      return 2;
+    }
     std::cerr << "pkmws: error: " << e.what() << " (see pkmws --help)\n";
     return 2;
   }

@@ -28,14 +28,22 @@ void add_plot(CLI::App& app, std::vector<Command>& commands) {
   auto* sub = app.add_subcommand("plot", "Curves of a 1-DOF mechanism (Pi-joint figures) as SVG charts");
   struct Args {
     std::string file, out;
+    bool json = false;
   };
   auto a = std::make_shared<Args>();
   sub->add_option("FILE", a->file, "Mechanism file (JSON)")->required();
   sub->add_option("--out,-o", a->out, "Output directory (must exist)")->required();
+  sub->add_flag("--json", a->json, "Print one JSON object (docs/schema/plot.output.schema.json)");
   commands.push_back({sub, [a] {
     const auto mech = io::load_mechanism(a->file);
     if (!std::filesystem::is_directory(a->out)) throw io::InputError(a->out + ": no such directory");
-    for (const auto& f : write_curve_figures(mech, a->out)) std::printf("%s/%s\n", a->out.c_str(), f.c_str());
+    const auto files = write_curve_figures(mech, a->out);
+    if (a->json) {
+      print_json(Json{{"name", mech.name}, {"mechanism", mech.mechanism}, {"units", mech.units},
+                      {"output_dir", a->out}, {"figures", files}});
+      return 0;
+    }
+    for (const auto& f : files) std::printf("%s/%s\n", a->out.c_str(), f.c_str());
     return 0;
   }});
 }

@@ -79,7 +79,7 @@ TEST(BodiesCli, ExplainNamesTheCollidingParts) {
 TEST(BodiesCli, InfoListsTheCheckedPairs) {
   // MOMA machine: 7 parts; joined pairs (platform-rods, rods, rod-own slider, slider-own housing),
   // allowed rod-own housing and the fixed pair housing1-housing2 are not checked: 11 remain.
-  const auto r = run("info " + dataset("machine_moma_m1"));
+  const auto r = run("info " + dataset("machine_moma_m1") + " --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto pairs = json::parse(r.out)["derived"]["collision_pairs"];
   ASSERT_EQ(pairs.size(), 11u);

@@ -88,17 +88,17 @@ TEST_F(Cli, AreaJsonHasTheContractKeys) {
 
 TEST_F(Cli, IkDkEvalInfoAnswerInJson) {
   const std::string f = write("m.json", kGoodMoma).string();
-  const Result ik = run("ik " + f + " 0 -300");
+  const Result ik = run("ik " + f + " 0 -300 --json");
   ASSERT_EQ(ik.status, 0) << ik.err;
   const auto j = nlohmann::json::parse(ik.out);
   ASSERT_FALSE(j["solutions"].empty());
   bool any_valid = false;
   for (const auto& s : j["solutions"]) any_valid = any_valid || s["valid"].get<bool>();
   EXPECT_TRUE(any_valid);
-  const Result dk = run("dk " + f + " 100 100");
+  const Result dk = run("dk " + f + " 100 100 --json");
   ASSERT_EQ(dk.status, 0) << dk.err;
   EXPECT_FALSE(nlohmann::json::parse(dk.out)["solutions"].empty());
-  const Result ev = run("eval " + f + " 0 -300");
+  const Result ev = run("eval " + f + " 0 -300 --json");
   ASSERT_EQ(ev.status, 0) << ev.err;
   const auto e = nlohmann::json::parse(ev.out);
   ASSERT_FALSE(e["modes"].empty());
@@ -106,7 +106,7 @@ TEST_F(Cli, IkDkEvalInfoAnswerInJson) {
                           "pressure_angle_deg", "reactions_N"}) {
     EXPECT_TRUE(e["modes"][0].contains(key)) << key;
   }
-  const Result info = run("info " + f);
+  const Result info = run("info " + f + " --json");
   ASSERT_EQ(info.status, 0) << info.err;
   EXPECT_EQ(nlohmann::json::parse(info.out)["derived"]["dof"], 2);
 }
@@ -185,7 +185,7 @@ namespace {
 
 TEST_F(Cli, ThreeDofDirectKinematicsGivesEveryAssemblyMode) {
   // 3-RRP of [Mitsi] (reconstructed), joint values (60, 10, 10) deg.
-  auto r = run("dk " + dataset("three_rrp_mitsi.json") + " 60 10 10 --svg " + (dir_ / "rrp").string());
+  auto r = run("dk " + dataset("three_rrp_mitsi.json") + " 60 10 10 --json --svg " + (dir_ / "rrp").string());
   ASSERT_EQ(r.status, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["solutions"].size(), 2u);
@@ -204,25 +204,25 @@ TEST_F(Cli, ThreeDofDirectKinematicsGivesEveryAssemblyMode) {
   for (const auto& s : j["solutions"]) {
     const auto pose = s["pose"];
     const auto ik = run("ik " + dataset("three_rrp_mitsi.json") + " " + pose[0].dump() + " " + pose[1].dump() + " " +
-                        pose[2].dump());
+                        pose[2].dump() + " --json");
     ASSERT_EQ(ik.status, 0) << ik.err;
     const auto k = nlohmann::json::parse(ik.out);
     EXPECT_EQ(k["solutions"].size(), 8u);
     bool found = false;
     for (const auto& m : k["solutions"]) {
       const auto q = m["joints"];
-      found = found || (std::abs(q["phi1_deg"].get<double>() - 60) < 1e-7 &&
-                        std::abs(q["phi2_deg"].get<double>() - 10) < 1e-7 &&
-                        std::abs(q["phi3_deg"].get<double>() - 10) < 1e-7);
+      found = found || (std::abs(q["phi1"].get<double>() - 60) < 1e-7 &&
+                        std::abs(q["phi2"].get<double>() - 10) < 1e-7 &&
+                        std::abs(q["phi3"].get<double>() - 10) < 1e-7);
     }
     EXPECT_TRUE(found);
   }
 
-  r = run("dk " + dataset("three_prp_example.json") + " 40 40 40");
+  r = run("dk " + dataset("three_prp_example.json") + " 40 40 40 --json");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["solutions"].size(), 2u);
 
-  r = run("dk " + dataset("three_rpr_prismatic.json") + " 1.809 1.142 0.694");
+  r = run("dk " + dataset("three_rpr_prismatic.json") + " 1.809 1.142 0.694 --json");
   ASSERT_EQ(r.status, 0) << r.err;
   j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["solutions"].size(), 6u);
@@ -310,7 +310,7 @@ TEST_F(Cli, EvalGivesTheDistanceToTheTypeTwoSingularity) {
   // PAMINSA at phi = 0: the singular circle has radius
   // sqrt(R_b² + R_p² - 2 R_b R_p) = 0.25 m ([Briot]), so from (0.1, 0.05) the
   // distance is 0.25 - |P| (to the polyline's chord sag).
-  const auto r = run("eval " + dataset("three_rpr_paminsa.json") + " 0.1 0.05 0");
+  const auto r = run("eval " + dataset("three_rpr_paminsa.json") + " 0.1 0.05 0 --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(j["distance_to_type2_singularity"].get<double>(), 0.25 - std::hypot(0.1, 0.05), 2e-4);
@@ -345,6 +345,80 @@ TEST_F(Cli, ExportWritesTheBandsOfACriterion) {
                    "svg");
   expect_bad_input(run("export " + file + " -f svg --criterion pressure_angle -o " + (dir_ / "d.svg").string()),
                    "--levels");
+}
+
+}  // namespace
+
+namespace {
+
+// docs/format.md (output vocabulary): one shape for every mechanism.
+TEST_F(Cli, OneVocabularyForEveryMechanism) {
+  // Joints keyed by name with their units stated once; modes as one sign per leg.
+  auto r = run("ik " + dataset("five_bar_dextar_pm.json") + " 0.05 0.2 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["units"], "m");
+  EXPECT_EQ(j["joint_names"], nlohmann::json::parse(R"(["theta1", "theta2"])"));
+  EXPECT_EQ(j["joint_units"], nlohmann::json::parse(R"({"theta1": "deg", "theta2": "deg"})"));
+  EXPECT_EQ(j["solutions"][0]["mode"], "+-");
+  EXPECT_TRUE(j["solutions"][0]["joints"].contains("theta1"));
+  r = run("ik " + dataset("three_rpr_prismatic.json") + " 0 0 0 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["solutions"][0]["mode"], "000");
+  EXPECT_EQ(j["joint_units"]["rho1"], "m");
+  // Without a load the reactions are null with the reason next to them.
+  r = run("eval " + dataset("moma_m1_g0_l250.json") + " 0 -300 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["modes"][0]["reactions_N"].is_null());
+  EXPECT_NE(j["modes"][0]["reactions_N_reason"].get<std::string>().find("load"), std::string::npos);
+  // info states the same joints.
+  r = run("info " + dataset("moma_m1_g0_l250.json") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["derived"]["joint_units"], nlohmann::json::parse(R"({"p1": "mm", "p2": "mm"})"));
+}
+
+TEST_F(Cli, ThreeDofPoseDefaultsToTheFilesOrientation) {
+  // three_rrp_mitsi.json has orientation_deg 20.
+  const auto two = run("eval " + dataset("three_rrp_mitsi.json") + " 70 40 --json");
+  const auto three = run("eval " + dataset("three_rrp_mitsi.json") + " 70 40 20 --json");
+  ASSERT_EQ(two.status, 0) << two.err;
+  ASSERT_EQ(three.status, 0) << three.err;
+  EXPECT_EQ(two.out, three.out);
+  const auto ik = run("ik " + dataset("three_rrp_mitsi.json") + " 70 40 --json");
+  ASSERT_EQ(ik.status, 0) << ik.err;
+  EXPECT_EQ(nlohmann::json::parse(ik.out)["pose"][2].get<double>(), 20.0);
+}
+
+TEST_F(Cli, ExtraValuesAreAnErrorNamingTheCommand) {
+  const std::string moma = dataset("moma_m1_g0_l250.json");
+  expect_bad_input(run("ik " + moma + " 0 -300 5"), "ik: expected X Y for a moma file (got 3 values)");
+  expect_bad_input(run("eval " + moma + " 0 -300 5"), "eval: expected X Y");
+  expect_bad_input(run("dk " + moma + " 10 10 10"), "dk: expected 2 values (p1 p2)");
+  expect_bad_input(run("eval " + dataset("three_rrp_mitsi.json") + " 70 40 20 1"), "eval: expected X Y [PHI_DEG]");
+  expect_bad_input(run("ik " + dataset("pi_joint_prototype.json") + " 20 30"), "ik: expected THETA_DEG");
+  expect_bad_input(run("area " + moma + " 5"), "area: ");
+  expect_bad_input(run("info " + moma + " 5"), "info: ");
+  expect_bad_input(run("explain " + dataset("machine_moma_m1.json") + " 0 -300 1"), "explain: ");
+}
+
+TEST_F(Cli, TextOutputStatesUnits) {
+  auto r = run("ik " + dataset("moma_m1_g0_l250.json") + " 0 -300");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("p1 = 70.8712 mm"), std::string::npos) << r.out;
+  r = run("dk " + dataset("five_bar_dextar_pm.json") + " 90 90");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("theta1 = 90 deg"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" m, y = "), std::string::npos) << r.out;
+  r = run("eval " + dataset("three_rpr_paminsa.json") + " 0.1 0.05");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("phi = 0 deg"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" deg"), std::string::npos) << r.out;
+  r = run("info " + dataset("moma_m1_g0_l250.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("p1 (mm)"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -91,7 +91,7 @@ TEST(FiveBarKinematics, DexTARDatasetsCarryTheirWorkingModes) {
     const auto sol = m.inverse({0.05, 0.2, 0.0});
     ASSERT_EQ(sol.size(), 4u);
     EXPECT_TRUE(sol[0].valid);
-    EXPECT_EQ(sol[0].mode, "(" + std::to_string(s1) + "," + std::to_string(s2) + ")");
+    EXPECT_EQ(sol[0].mode, std::string(1, s1 > 0 ? '+' : '-') + (s2 > 0 ? '+' : '-'));
     for (std::size_t k = 1; k < 4; ++k) EXPECT_FALSE(sol[k].valid) << sol[k].reason;
   }
 }

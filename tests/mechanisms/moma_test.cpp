@@ -325,7 +325,7 @@ TEST(MomaKinematics, InverseListsTheFilesWorkingModeFirst) {
   // the other roots are either outside the stroke or another working mode.
   const auto ik = m.inverse({0, -300, 0});
   ASSERT_EQ(ik.size(), 4u);
-  EXPECT_EQ(ik[0].mode, "(-1,-1)");
+  EXPECT_EQ(ik[0].mode, "--");
   EXPECT_TRUE(ik[0].valid);
   EXPECT_TRUE(ik[0].reason.empty());
   for (std::size_t k = 1; k < 4; ++k) {
@@ -335,11 +335,11 @@ TEST(MomaKinematics, InverseListsTheFilesWorkingModeFirst) {
   std::vector<std::string> modes;
   for (const auto& s : ik) modes.push_back(s.mode);
   std::sort(modes.begin(), modes.end());
-  EXPECT_EQ(modes, (std::vector<std::string>{"(-1,-1)", "(-1,1)", "(1,-1)", "(1,1)"}));
+  EXPECT_EQ(modes, (std::vector<std::string>{"++", "+-", "-+", "--"}));
   // With a long stroke the other roots fall inside it: flagged as another working mode.
   const Moma long_stroke = m1(250, 0, 1000);
   for (const auto& s : long_stroke.inverse({0, -300, 0})) {
-    if (s.mode == "(-1,-1)") continue;
+    if (s.mode == "--") continue;
     EXPECT_FALSE(s.valid);
     EXPECT_NE(s.reason.find("working mode"), std::string::npos) << s.reason;
   }
@@ -514,8 +514,8 @@ TEST(MomaKinematics, JacobiansMatchFiniteDifferences) {
         const auto j = m.jacobians(p, s.joints[0], s.joints[1]);
         // Keep away from singular poses, where finite differences break down.
         if (std::abs(j.B(0, 0)) < 20 || std::abs(j.B(1, 1)) < 20 || std::abs(j.A.determinant()) < 2000) continue;
-        const int b1 = s.mode[1] == '-' ? -1 : 1;
-        const int b2 = s.mode[s.mode.find(',') + 1] == '-' ? -1 : 1;
+        const int b1 = s.mode[0] == '-' ? -1 : 1;  // one sign per leg
+        const int b2 = s.mode[1] == '-' ? -1 : 1;
         const double h = 1e-4;
         auto q = [&](Point at, int i) { return *m.inverse_leg(i, at, i == 0 ? b1 : b2); };
         Eigen::Matrix2d fd;
@@ -575,10 +575,10 @@ TEST(MomaKinematics, SingularitiesAtConstructedPoses) {
     EXPECT_TRUE(std::isinf(e.condition_number));
   }
   // Type 2 (parallel): rods aligned. P = (0, -y0), y0 = sqrt(250^2 - 100^2):
-  // mode (-1,1) puts S1 = (-100, 0) and S2 = (100, -2 y0), P their midpoint.
+  // mode "-+" (branches -1, 1) puts S1 = (-100, 0) and S2 = (100, -2 y0), P their midpoint.
   const double y0 = std::sqrt(250.0 * 250.0 - 100.0 * 100.0);
   for (const auto& e : m.evaluate({0, -y0, 0}, {})) {
-    if (e.mode == "(-1,1)" || e.mode == "(1,-1)") {
+    if (e.mode == "-+" || e.mode == "+-") {
       EXPECT_EQ(e.singularity, "type2") << e.mode;
       EXPECT_TRUE(e.singular);
       EXPECT_NEAR(e.jacobian_det, 0.0, 1e-9);

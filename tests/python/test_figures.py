@@ -110,7 +110,7 @@ def test_moma_dk_figures_draw_rods_of_the_file_length(tmp_path):
     doc = json.loads(src.read_text())
     rod = doc["legs"][0]["rod_length"]
     prefix = tmp_path / "dk"
-    out = json.loads(run("dk", src, "50", "150", "--svg", prefix).stdout)
+    out = json.loads(run("dk", src, "50", "150", "--json", "--svg", prefix).stdout)
     assert len(out["solutions"]) == 2
     for k, sol in enumerate(out["solutions"], start=1):
         root = svgfig.load(f"{prefix}_{k}.svg")

@@ -22,12 +22,12 @@ def no_constant(name):
 def commands(out):
     # (arguments after FILE, prints JSON?)
     return [
-        (["info"], True),
+        (["info", "--json"], True),
         (["area", "--json", "--max-time", BOUND], True),
         (["export", "-f", "svg", "-o", out / "x.svg", "--max-time", BOUND], False),
-        (["ik", "0", "0", "0"], True), (["ik", "0", "0"], True),
-        (["eval", "0", "0", "0"], True), (["eval", "0.1", "-0.1"], True),
-        (["dk", "0", "0", "0"], True), (["dk", "0.5", "-0.5"], True),
+        (["ik", "0", "0", "0", "--json"], True), (["ik", "0", "0", "--json"], True),
+        (["eval", "0", "0", "0", "--json"], True), (["eval", "0.1", "-0.1", "--json"], True),
+        (["dk", "0", "0", "0", "--json"], True), (["dk", "0.5", "-0.5", "--json"], True),
         (["grid", "--cells", "16", "--json"], True),
         (["levels", "--criterion", "pressure_angle", "--levels", "30,60", "--tolerance", "1e-3", "--json",
           "--max-time", BOUND], True),

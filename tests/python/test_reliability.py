@@ -168,7 +168,7 @@ def test_outputs_are_checked_before_the_work(tmp_path):
 
 
 def test_dk_figures_are_written_together(tmp_path):
-    r = pkmws("dk", THREE_RRP, "60", "10", "10", "--svg", tmp_path / "mode")
+    r = pkmws("dk", THREE_RRP, "60", "10", "10", "--json", "--svg", tmp_path / "mode")
     assert r.returncode == 0, r.stderr
     j = json.loads(r.stdout)
     figures = sorted(p.name for p in tmp_path.iterdir())
@@ -242,11 +242,12 @@ def test_angles_beyond_a_million_degrees_are_refused():
 def test_json_reports_have_no_bare_null(tmp_path):
     # Poses where figures are legitimately undefined: singular, unreachable,
     # out of every mode; each null must carry its reason.
-    runs = [("eval", FIVE_BAR, "0", "0"), ("eval", FIVE_BAR, "0", "0.2"), ("eval", MOMA, "0", "-300"),
-            ("eval", MOMA, "1e6", "0"), ("ik", MOMA, "1e6", "0"), ("eval", THREE_RRP, "70", "40", "20"),
-            ("dk", THREE_RRP, "60", "10", "10"), ("dk", FIVE_BAR, "0", "180"),
-            ("eval", DATASET / "three_rpr_paminsa.json", "0", "0", "0"),
-            ("eval", DATASET / "three_rpr_paminsa.json", "0.3", "0.3", "73.39845040097975"),
+    runs = [("eval", FIVE_BAR, "0", "0", "--json"), ("eval", FIVE_BAR, "0", "0.2", "--json"),
+            ("eval", MOMA, "0", "-300", "--json"), ("eval", MOMA, "1e6", "0", "--json"),
+            ("ik", MOMA, "1e6", "0", "--json"), ("eval", THREE_RRP, "70", "40", "20", "--json"),
+            ("dk", THREE_RRP, "60", "10", "10", "--json"), ("dk", FIVE_BAR, "0", "180", "--json"),
+            ("eval", DATASET / "three_rpr_paminsa.json", "0", "0", "0", "--json"),
+            ("eval", DATASET / "three_rpr_paminsa.json", "0.3", "0.3", "73.39845040097975", "--json"),
             ("levels", FIVE_BAR, "--criterion", "pressure_angle", "--levels", "30,60", "--tolerance", "1e-2", "--json")]
     nulls = 0
     for args in runs:

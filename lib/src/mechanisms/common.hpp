@@ -46,10 +46,13 @@ inline std::string format_number(double v) {
   return buf;
 }
 
-/// Label of a two-leg working mode or branch pair, e.g. "(-1,1)".
-inline std::string mode_label(int first, int second) {
-  return "(" + std::to_string(first) + "," + std::to_string(second) + ")";
-}
+/// The sign character of a mode label (docs/format.md (modes)): '+' for a
+/// positive branch, '-' for a negative one, '0' for none (a leg with one
+/// inverse solution, two assembly modes that meet).
+inline char mode_sign(double sign) { return sign > 0 ? '+' : (sign < 0 ? '-' : '0'); }
+
+/// Label of a two-leg working mode: one sign per leg, e.g. "-+" for branches (-1, 1).
+inline std::string mode_label(int first, int second) { return {mode_sign(first), mode_sign(second)}; }
 
 /// The evaluation of one working mode started from its IK solution (mode,
 /// reachability, reason, joint values). Without all `dof` joint values there

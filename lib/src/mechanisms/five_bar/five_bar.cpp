@@ -275,7 +275,7 @@ std::vector<PoseSolution> FiveBar::direct(std::span<const double> joints) const 
   std::vector<PoseSolution> out;
   for (const FiveBarAssembly& a : direct_all(*q[0], *q[1])) {
     PoseSolution s;
-    s.mode = a.sign > 0 ? "+" : (a.sign < 0 ? "-" : "tangent");
+    s.mode = std::string(1, detail::mode_sign(a.sign));
     s.pose = {a.tool.x, a.tool.y, 0.0};
     s.platform_points = {a.elbows[0], a.elbows[1]};
     for (int i = 0; i < 2 && s.reason.empty(); ++i) s.reason = limit_problem(i, *q[i]);

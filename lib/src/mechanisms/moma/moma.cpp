@@ -196,7 +196,7 @@ std::vector<PoseSolution> Moma::direct(std::span<const double> q) const {
   std::vector<PoseSolution> out;
   for (const MomaAssembly& a : direct_all(q[0], q[1])) {
     PoseSolution s;
-    s.mode = a.sign > 0 ? "+" : (a.sign < 0 ? "-" : "tangent");
+    s.mode = std::string(1, detail::mode_sign(a.sign));
     s.pose = {a.platform.x, a.platform.y, 0.0};
     // Strokes first (they do not depend on the assembly mode), then the branch side.
     for (int i = 0; i < 2 && s.reason.empty(); ++i) {

@@ -163,7 +163,7 @@ std::string PiJoint::range_problem(double theta, double d) const {
 std::vector<JointSolution> PiJoint::inverse(const Pose& pose) const {
   const double theta = pose.phi;
   JointSolution s;
-  s.mode = "parallelogram";
+  s.mode = "0";  // one inverse solution (docs/format.md (modes))
   if (!(std::abs(theta) < pi / 2)) {
     s.reason = "theta = " + format_number(theta * rad2deg) + " deg outside (-90, 90) deg ([Milutinovic] eq. 1)";
     return {s};
@@ -184,7 +184,7 @@ std::vector<PoseSolution> PiJoint::direct(std::span<const double> q) const {
   // the parallelogram and lies outside (-90°, 90°).
   for (int branch : {1, -1}) {
     PoseSolution s;
-    s.mode = branch > 0 ? "cos+" : "cos-";
+    s.mode = branch > 0 ? "+" : "-";  // the sign of cos theta
     double t = branch > 0 ? *theta : (*theta >= 0.0 ? pi - *theta : -pi - *theta);
     if (branch < 0 && std::abs(std::abs(t) - pi / 2) <= 1e-12) continue;  // double root at ±90°
     s.pose = {0.0, 0.0, t};

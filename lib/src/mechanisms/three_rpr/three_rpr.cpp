@@ -231,7 +231,7 @@ std::vector<JointInfo> ThreeRpr::joints() const {
 
 std::vector<JointSolution> ThreeRpr::inverse(const Pose& pose) const {
   JointSolution s;
-  s.mode = "single";
+  s.mode = "000";  // one inverse solution per leg (docs/format.md (modes))
   const auto rho = leg_lengths(pose);
   const auto q = leg_angles(pose);
   for (std::size_t i = 0; i < 3; ++i) s.joints.push_back(actuation_ == ThreeRprActuation::revolute ? q[i] : rho[i]);
@@ -441,7 +441,7 @@ std::vector<PoseSolution> ThreeRpr::direct(std::span<const double> joints) const
     const auto b = platform_points(s.pose);
     s.platform_points = {b[0], b[1], b[2]};
     const double det = transmission(s.pose).determinant;
-    s.mode = std::to_string(k + 1) + (det > 0.0 ? "+" : (det < 0.0 ? "-" : "0"));
+    s.mode = std::string(1, detail::mode_sign(det));
     const auto rho = leg_lengths(s.pose);
     if (actuation_ == ThreeRprActuation::revolute) {
       for (int i = 0; i < 3 && s.reason.empty(); ++i) {

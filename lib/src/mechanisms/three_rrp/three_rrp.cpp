@@ -38,7 +38,7 @@ using detail::wrap_from;
 
 
 std::string label(const std::array<int, 3>& sigma) {
-  return "(" + std::to_string(sigma[0]) + "," + std::to_string(sigma[1]) + "," + std::to_string(sigma[2]) + ")";
+  return {detail::mode_sign(sigma[0]), detail::mode_sign(sigma[1]), detail::mode_sign(sigma[2])};
 }
 
 }  // namespace
@@ -196,7 +196,7 @@ std::vector<JointSolution> ThreeRrp::inverse(const Pose& pose) const {
   std::vector<JointSolution> out;
   for (const auto& m : modes) {
     JointSolution s;
-    s.mode = drive_ == ThreeRrpDrive::crank ? label(m) : "single";
+    s.mode = drive_ == ThreeRrpDrive::crank ? label(m) : "000";  // sliders: one solution per leg
     std::vector<double> q;
     for (std::size_t i = 0; i < 3 && s.reason.empty(); ++i) {
       const auto it = std::find_if(per_chain[i].begin(), per_chain[i].end(),
@@ -229,10 +229,10 @@ std::vector<PoseSolution> ThreeRrp::direct(std::span<const double> joints) const
     s.pose = {as.origin.x, as.origin.y, as.phi};
     s.platform_points = {as.vertices[0], as.vertices[1], as.vertices[2]};
     if (assemblies.size() == 1) {
-      s.mode = "tangent";  // the two assembly modes meet: a type-2 singularity
+      s.mode = "0";  // the two assembly modes meet: a type-2 singularity
     } else {
       const double det = jacobians(s.pose, joints).A.determinant();
-      s.mode = det > 0.0 ? "+" : (det < 0.0 ? "-" : "0");
+      s.mode = std::string(1, detail::mode_sign(det));
     }
     s.reason = limits;
     s.valid = s.reason.empty();
