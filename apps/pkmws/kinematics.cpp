@@ -334,10 +334,9 @@ void add_kinematics(CLI::App& app, std::vector<Command>& commands) {
                   s.contains("reason") ? ("; " + s["reason"].get<std::string>()).c_str() : "",
                   s.contains("figure") ? ("; figure " + s["figure"].get<std::string>()).c_str() : "");
     }
-    for (const char* key : {"elimination", "eliminant"}) {
-      if (out.contains(key) && out[key].contains("method")) {
-        std::printf("%s %s (--json: every coefficient and root)\n", key, out[key]["method"].get<std::string>().c_str());
-      }
+    if (out.contains("elimination")) {
+      std::printf("elimination: %s (--json: every coefficient and root)\n",
+                  out["elimination"]["method"].get<std::string>().c_str());
     }
     return 0;
   }});
