@@ -49,32 +49,43 @@ def test_export_every_format(toy, tmp_path):
 
 def test_ik_dk_eval_round_trip(toy):
     x, y = BASE[0] + 30.0, BASE[1] + 10.0
-    ik = json.loads(run("ik", toy, x, y))
-    joints = ik["solutions"][0]["joints"]
-    values = list(joints.values()) if isinstance(joints, dict) else joints
-    theta_deg, rho = values[0], values[1]
+    ik = json.loads(run("ik", toy, x, y, "--json"))
+    assert ik["joint_units"] == {"theta": "deg", "rho": "mm"}
+    (solution,) = ik["solutions"]
+    assert solution["valid"]
+    theta_deg, rho = solution["joints"]["theta"], solution["joints"]["rho"]
     assert abs(theta_deg - math.degrees(math.atan2(10.0, 30.0))) < 1e-9
     assert abs(rho - math.hypot(30.0, 10.0)) < 1e-9
-    dk = json.loads(run("dk", toy, theta_deg, rho))
+    dk = json.loads(run("dk", toy, theta_deg, rho, "--json"))
     pose = dk["solutions"][0]["pose"]
     assert abs(pose[0] - x) < 1e-9 and abs(pose[1] - y) < 1e-9
-    ev = json.loads(run("eval", toy, x, y))
-    assert ev["evaluations"][0]["reachable"] if "evaluations" in ev else True
+    ev = json.loads(run("eval", toy, x, y, "--json"))
+    (mode,) = ev["modes"]
+    assert mode["reachable"]
+    assert abs(mode["jacobian_det"] + 1.0 / rho) < 1e-12  # det dq/dx = -1/rho
+    # Outside the stroke: not valid, with the reason.
+    far = json.loads(run("ik", toy, BASE[0] + 60.0, BASE[1], "--json"))
+    assert not far["solutions"][0]["valid"] and far["solutions"][0]["reason"]
 
 
 def test_grid_and_compare_converge_to_the_area(toy):
     g = json.loads(run("grid", toy, "--cells", 400, "--json"))
-    estimate = g.get("area", g.get("area_estimate"))
-    assert abs(estimate - AREA) <= 0.01 * AREA
+    assert g["kernel"] == "generic"
+    assert abs(g["area"] - AREA) <= 0.01 * AREA
+    assert g["area_lower"] <= AREA <= g["area_upper"]
     c = json.loads(run("compare", toy, "--json"))
-    assert abs(c["exact_area"] - AREA) <= 1e-9 * AREA if "exact_area" in c else True
+    assert abs(c["exact_area"] - AREA) <= 1e-9 * AREA
+    finest = max(c["rows"], key=lambda r: r.get("cells", 0) or 0)
+    assert abs(finest["area"] - AREA) <= 1e-3 * AREA
 
 
 def test_batch_writes_summary(toy, tmp_path):
     out = tmp_path / "batch"
     out.mkdir()
     run("batch", toy, "--out", out)
-    summary = json.loads((out / "summary.json").read_text())
-    text = json.dumps(summary)
-    assert "toy RP leg" in text or "toy" in text
-    assert any(p.suffix == ".svg" for p in out.iterdir())
+    rows = json.loads((out / "summary.json").read_text())
+    rows = rows["rows"] if isinstance(rows, dict) else rows
+    (row,) = rows
+    assert row["mechanism"] == "toy_rp"
+    assert abs(row["area"] - AREA) <= 1e-9 * AREA
+    assert (out / pathlib.Path(row["figure"]).name).exists()
