@@ -73,7 +73,7 @@ def test_grid_and_compare_converge_to_the_area(toy):
     assert g["kernel"] == "generic"
     assert abs(g["area"] - AREA) <= 0.01 * AREA
     assert g["area_lower"] <= AREA <= g["area_upper"]
-    c = json.loads(run("compare", toy, "--json"))
+    c = json.loads(run("compare", toy, "--json", "--ladder", 100, 400, 1600, "--depths", 4, 8))
     assert abs(c["exact_area"] - AREA) <= 1e-9 * AREA
     finest = max(c["rows"], key=lambda r: r.get("cells", 0) or 0)
     assert abs(finest["area"] - AREA) <= 1e-3 * AREA
