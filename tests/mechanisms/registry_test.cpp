@@ -101,7 +101,7 @@ TEST(Registry, EveryMechanismAnswersEveryGenericQuestion) {
     ASSERT_GT(w.area(), 0.0);
     const auto comps = w.components();
     ASSERT_FALSE(comps.empty());
-    const auto circle = geometry::largest_inscribed_circle(comps.front(), 1e-6 * std::sqrt(w.area()));
+    const auto circle = geometry::largest_inscribed_circle(comps.front(), 1e-3 * std::sqrt(w.area()));
     const mechanisms::Pose pose{circle.center.x, circle.center.y, m.orientation()};
     EXPECT_TRUE(m.reachable(pose));
     EXPECT_TRUE(w.contains(circle.center));
