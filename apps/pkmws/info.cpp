@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "bodies_cli.hpp"
+#include "pkmws/io/parameters.hpp"
 
 namespace pkmws::cli {
 
@@ -18,6 +19,12 @@ void add_info(CLI::App& app, std::vector<Command>& commands) {
     Json out = mech.document;
     Json derived{{"dof", mech.model->dof()}};
     derived.update(joint_vocabulary(mech));
+    // The parameter model (pkmws/io/parameters.hpp): every number by field path, with type and unit.
+    Json parameters = Json::array();
+    for (const auto& p : io::parameters(mech)) {
+      parameters.push_back({{"path", p.path}, {"value", p.value}, {"type", p.type}, {"unit", p.unit}});
+    }
+    derived["parameters"] = parameters;
     out["derived"] = derived;
     try {
       const auto b = mech.model->bounds();
@@ -62,6 +69,7 @@ void add_info(CLI::App& app, std::vector<Command>& commands) {
       std::printf("orientation %.10g deg (the workspace's; the default PHI_DEG of ik and eval)\n",
                   mech.model->orientation() * 180.0 / std::numbers::pi);
     }
+    std::printf("parameters %zu numbers by field path (--json: derived.parameters, with units)\n", d["parameters"].size());
     if (d.contains("collision_pairs")) std::printf("collision pairs %zu\n", d["collision_pairs"].size());
     if (!mech.description.empty()) std::printf("%s\n", mech.description.c_str());
     std::printf("(--json: the validated document)\n");

@@ -62,8 +62,6 @@ class Parameters:
     ``*_deg`` fields in degrees).
     """
 
-    _SKIP = ("name", "mechanism", "units", "description", "source")
-
     def __init__(self, mechanism: Mechanism) -> None:
         self._m = mechanism
 
@@ -78,23 +76,16 @@ class Parameters:
         self._m._assign(self._m._with(dict(values)))
 
     def keys(self) -> List[str]:
-        """Every numeric field path of the document (``source`` and text fields left out)."""
-        out: List[str] = []
+        """Every numeric field path of the document (``source`` left out), keys in sorted order."""
+        return [p[0] for p in self._m._parameters()]
 
-        def walk(node: Any, prefix: str) -> None:
-            if isinstance(node, dict):
-                for k, v in node.items():
-                    if prefix == "" and k in self._SKIP:
-                        continue
-                    walk(v, f"{prefix}.{k}" if prefix else k)
-            elif isinstance(node, list):
-                for i, v in enumerate(node):
-                    walk(v, f"{prefix}[{i}]")
-            elif isinstance(node, (int, float)) and not isinstance(node, bool):
-                out.append(prefix)
+    def units(self) -> Dict[str, str]:
+        """The unit of every numeric field: the file's length unit, ``deg``, ``N``, ``N m``, ``mm/s`` or ``1``."""
+        return {p[0]: p[3] for p in self._m._parameters()}
 
-        walk(self._m.document, "")
-        return out
+    def info(self) -> List[Dict[str, Any]]:
+        """Every numeric field as ``{"path", "value", "type", "unit"}`` (type ``number`` or ``integer``)."""
+        return [dict(zip(("path", "value", "type", "unit"), p)) for p in self._m._parameters()]
 
     def __iter__(self) -> Iterator[str]:
         return iter(self.keys())

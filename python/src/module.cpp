@@ -31,6 +31,7 @@
 #include "pkmws/geometry/region.hpp"
 #include "pkmws/io/export.hpp"
 #include "pkmws/io/mechanism_file.hpp"
+#include "pkmws/io/parameters.hpp"
 #include "pkmws/mechanisms/mechanism.hpp"
 
 namespace py = pybind11;
@@ -234,7 +235,7 @@ File load_document(const std::string& text, const std::string& origin) {
 
 // The numbers at field paths of the file ("legs[1].rod_length").
 py::object get_parameter(const PyMechanism& m, const std::string& path) {
-  const Json& node = design::field_at(m.file->document, path, m.file->path, "is not a field of the file");
+  const Json& node = io::field_at(m.file->document, path, m.file->path, "is not a field of the file");
   if (node.is_null()) return py::none();
   if (node.is_number_integer()) return py::int_(node.get<std::int64_t>());
   if (!node.is_number()) throw InputError(m.file->path + ": '" + path + "' is not a number");
@@ -247,7 +248,7 @@ PyMechanism with_parameters(const PyMechanism& m, const py::dict& values) {
   Json doc = m.file->document;
   for (const auto& [key, value] : values) {
     const std::string path = py::str(key);
-    Json& node = design::field_at(doc, path, m.file->path, "is not a field of the file");
+    Json& node = io::field_at(doc, path, m.file->path, "is not a field of the file");
     if (!node.is_null() && !node.is_number()) throw InputError(m.file->path + ": '" + path + "' is not a number");
     if (py::isinstance<py::bool_>(value)) {
       throw InputError(m.file->path + ": '" + path + "': expected a number, got a bool");
@@ -837,6 +838,12 @@ PYBIND11_MODULE(_pkmws, mod) {
       .def_property_readonly("has_bodies", [](const PyMechanism& m) { return m.file->bodies != nullptr; })
       .def_property_readonly("document", [](const PyMechanism& m) { return json_to_py(m.file->document); })
       .def("_get", &get_parameter, py::arg("path"))
+      .def("_parameters",
+           [](const PyMechanism& m) {
+             py::list out;
+             for (const auto& p : io::parameters(*m.file)) out.append(py::make_tuple(p.path, p.value, p.type, p.unit));
+             return out;
+           })
       .def("_with", &with_parameters, py::arg("values"))
       .def("_assign", [](PyMechanism& self, const PyMechanism& other) { self.file = other.file; })
       .def("inverse", &inverse, py::arg("x"), py::arg("y"), py::arg("phi") = py::none(),

@@ -1,5 +1,7 @@
 #include "pkmws/design/sweep.hpp"
 
+#include "pkmws/io/parameters.hpp"
+
 #include <algorithm>
 #include <boost/random/sobol.hpp>
 #include <chrono>
@@ -29,74 +31,14 @@ using nlohmann::json;
 using io::InputError;
 using io::detail::JsonReader;
 
-// A file path "legs[1].rod_length" as keys and indices.
-struct Step {
-  std::string key;  // empty: an array index
-  std::size_t index = 0;
-};
-
-std::vector<Step> parse_path(const std::string& path, const std::string& where) {
-  std::vector<Step> steps;
-  std::size_t i = 0;
-  const auto bad = [&] { throw InputError(where + ": '" + path + "' is not a field path like legs[1].rod_length"); };
-  while (i < path.size()) {
-    if (path[i] == '[') {
-      const std::size_t close = path.find(']', i);
-      if (close == std::string::npos || close == i + 1) bad();
-      const std::string digits = path.substr(i + 1, close - i - 1);
-      if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) bad();
-      steps.push_back({"", std::stoul(digits)});
-      i = close + 1;
-      if (i < path.size() && path[i] == '.') ++i;
-      continue;
-    }
-    std::size_t end = path.find_first_of(".[", i);
-    if (end == std::string::npos) end = path.size();
-    if (end == i) bad();
-    steps.push_back({path.substr(i, end - i), 0});
-    i = end;
-    if (i < path.size() && path[i] == '.') {
-      ++i;
-      if (i == path.size()) bad();
-    }
-  }
-  if (steps.empty()) bad();
-  return steps;
-}
-
-template <class Json>
-Json& walk_path(Json& document, const std::string& path, const std::string& where, const std::string& missing) {
-  const std::vector<Step> steps = parse_path(path, where);
-  Json* node = &document;
-  for (const Step& s : steps) {
-    if (s.key.empty()) {
-      if (!node->is_array() || s.index >= node->size()) throw InputError(where + ": '" + path + "' " + missing);
-      node = &node->at(s.index);
-    } else {
-      if (!node->is_object() || !node->contains(s.key)) throw InputError(where + ": '" + path + "' " + missing);
-      node = &node->at(s.key);
-    }
-  }
-  return *node;
-}
-
 }  // namespace
-
-json& field_at(json& document, const std::string& path, const std::string& where, const std::string& missing) {
-  return walk_path(document, path, where, missing);
-}
-
-const json& field_at(const json& document, const std::string& path, const std::string& where,
-                     const std::string& missing) {
-  return walk_path(document, path, where, missing);
-}
 
 namespace {
 
 // Sets the number at `path` in `doc`; the field must be in the base file (a
 // sweep varies what the file states; add an optional field there to vary it).
 void set_path(json& doc, const std::string& path, double value, const std::string& where) {
-  json& node = field_at(doc, path, where, "is not in the base file");
+  json& node = io::field_at(doc, path, where, "is not in the base file");
   if (!node.is_null() && !node.is_number()) throw InputError(where + ": '" + path + "' is not a number");
   node = value;
 }

@@ -13,8 +13,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "pkmws/geometry/types.hpp"
 
 namespace pkmws::design {
@@ -40,15 +38,6 @@ struct SweepSpec {
   double criteria_tolerance = 1e-6;   // relative width of certified limited areas
   int interference_depth = 7;         // quadtree depth of real workspaces
 };
-
-/// The node at a field path of a mechanism document ("legs[1].rod_length":
-/// keys, [index] for array elements), as sweep parameters address them. Throws
-/// io::InputError "<where>: '<path>' is not a field path like legs[1].rod_length"
-/// or "<where>: '<path>' <missing>" when the document has no such node.
-nlohmann::json& field_at(nlohmann::json& document, const std::string& path, const std::string& where,
-                         const std::string& missing = "is not in the base file");
-const nlohmann::json& field_at(const nlohmann::json& document, const std::string& path, const std::string& where,
-                               const std::string& missing = "is not in the base file");
 
 /// The metrics a sweep can compute, in column order.
 const std::vector<std::string>& metric_names();
