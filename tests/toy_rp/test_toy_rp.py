@@ -72,11 +72,13 @@ def test_grid_and_compare_converge_to_the_area(toy):
     g = json.loads(run("grid", toy, "--cells", 400, "--json"))
     assert g["kernel"] == "generic"
     assert abs(g["area"] - AREA) <= 0.01 * AREA
-    assert g["area_lower"] <= AREA <= g["area_upper"]
+    assert g["points_tested"] == 400 * 400
     c = json.loads(run("compare", toy, "--json", "--ladder", 100, 400, 1600, "--depths", 4, 8))
     assert abs(c["exact_area"] - AREA) <= 1e-9 * AREA
-    finest = max(c["rows"], key=lambda r: r.get("cells", 0) or 0)
-    assert abs(finest["area"] - AREA) <= 1e-3 * AREA
+    grids = [r for r in c["rows"] if r["method"] == "cartesian"]
+    assert [r["cells_per_side"] for r in grids] == [100, 400, 1600]
+    assert abs(grids[-1]["area"] - AREA) <= 1e-3 * AREA
+    assert abs(grids[-1]["rel_error"] - abs(grids[-1]["area"] - AREA) / AREA) < 1e-9
 
 
 def test_batch_writes_summary(toy, tmp_path):
