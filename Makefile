@@ -38,6 +38,8 @@ test: build
 # every test but those labelled `heavy` (minutes under ASan), the fuzz corpus
 # and the generative loader fuzzing included. UBSan stops at the first report;
 # tests/sanitize/ubsan.supp holds the one suppression (CGAL, with the reason).
+# The Python module is off there: an ASan extension cannot load into a plain
+# interpreter. .ci/run runs this after `make test`.
 sanitize: deps
 	@[ -f build-sanitize/CMakeCache.txt ] || cmake --preset sanitize
 	cmake --build --preset sanitize -j $(JOBS)
