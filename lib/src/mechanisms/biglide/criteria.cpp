@@ -1,28 +1,9 @@
 // Biglide velocity-ratio fields ([Strutynskyi] fig. 8), one per leg.
 #include "mechanisms/biglide/criteria.hpp"
 
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <memory>
-#include <stdexcept>
-#include <string>
-#include <vector>
-
 #include "criteria/support.hpp"
-#include "pkmws/certified/template_field.hpp"
 
 namespace pkmws::criteria {
-
-using certified::CellState;
-using certified::Interval;
-using certified::Jet;
-using detail::deg;
-using detail::dist2;
-using detail::nan;
-using detail::pi;
-using geometry::Box;
-using geometry::Point;
 
 namespace {
 

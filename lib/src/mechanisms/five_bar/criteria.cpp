@@ -2,28 +2,9 @@
 // cos²ε from the closed-form inverse kinematics (docs/theory/level_sets.md).
 #include "mechanisms/five_bar/criteria.hpp"
 
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <memory>
-#include <stdexcept>
-#include <string>
-#include <vector>
-
 #include "criteria/support.hpp"
-#include "pkmws/certified/template_field.hpp"
 
 namespace pkmws::criteria {
-
-using certified::CellState;
-using certified::Interval;
-using certified::Jet;
-using detail::deg;
-using detail::dist2;
-using detail::nan;
-using detail::pi;
-using geometry::Box;
-using geometry::Point;
 
 namespace {
 

@@ -2,28 +2,9 @@
 // the platform twists, and the assembly-mode constraint (docs/theory/three_dof.md).
 #include "mechanisms/three_rpr/criteria.hpp"
 
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <memory>
-#include <stdexcept>
-#include <string>
-#include <vector>
-
 #include "criteria/support.hpp"
-#include "pkmws/certified/template_field.hpp"
 
 namespace pkmws::criteria {
-
-using certified::CellState;
-using certified::Interval;
-using certified::Jet;
-using detail::deg;
-using detail::dist2;
-using detail::nan;
-using detail::pi;
-using geometry::Box;
-using geometry::Point;
 
 namespace {
 
