@@ -38,8 +38,8 @@ for f in files:
     rows.append(dict(file=f.name, config=config, rod=int(rod), guides=guides, ws=ws, area=ws.area,
                      parts=len(ws.components()), radius=circle["radius"], rect=rect))
 
-print(f"{'configuration':<14} {'guides (deg)':>12} {'l (mm)':>6} {'area (mm²)':>12} {'parts':>5} {'circle r (mm)':>13} "
-      f"{'rectangle (mm)':>16} {'rect. area (mm²)':>16}")
+print(f"{'configuration':<14} {'guides (deg)':>12} {'l (mm)':>6} {'area (mm²)':>12} {'parts':>5} "
+      f"{'circle r (mm)':>13} {'rectangle (mm)':>16} {'rect. area (mm²)':>16}")
 for r in rows:
     rect = r["rect"]
     print(f"{r['config']:<14} {r['guides']:>12} {r['rod']:>6} {r['area']:12.2f} {r['parts']:>5} {r['radius']:13.2f} "
