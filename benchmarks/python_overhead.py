@@ -94,8 +94,8 @@ def markdown(rows, n):
     lines = [HEADING, "",
              f"`benchmarks/python_overhead.py` (run by `benchmarks/run.sh` when the module is built): the same "
              f"operation from Python and as the C++ loop the module runs (timed inside the extension, no Python), "
-             f"alternated round by round in one run, best of {REPEAT}; arrays of N = {n} random points over the workspace's "
-             f"bounding box. Python {platform.python_version()}, numpy {np.__version__}.", "",
+             f"alternated round by round in one run, best of {REPEAT}; arrays of N = {n} random points over the "
+             f"workspace's bounding box. Python {platform.python_version()}, numpy {np.__version__}.", "",
              "| operation | unit | Python (µs) | C++ (µs) | Python / C++ |", "|---|---|---:|---:|---:|"]
     for name, kind, py, c in rows:
         ratio = f"{py / c:.2f}×" if c == c else "—"
