@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # make bench: the Google Benchmark suite (short, bounded runs), then the report
 # generator, which measures exact against grid and writes docs/benchmarks.md
-# and docs/figures/bench_error_vs_time.svg. A few minutes on 2 cores.
+# and docs/figures/bench_error_vs_time.svg. A few minutes on 2 cores. When the
+# Python module is built (build/python), benchmarks/python_overhead.py then
+# replaces the report's section "Python module overhead" (Python against C++
+# per call and per point, measured side by side).
 #   PKMWS_BUILD_DIR  build directory (default: build, what `make build` uses)
 #   BENCH_MIN_TIME   --benchmark_min_time per case in seconds (default 0.05)
 #   BENCH_FILTER     --benchmark_filter regex (default: all)
@@ -23,4 +26,11 @@ mkdir -p "$root/docs/figures"
   --out "$root/docs/benchmarks.md" \
   --figure "$root/docs/figures/bench_error_vs_time.svg" \
   --gbench "$build/bench.json"
+if compgen -G "$build/python/pkmws/_pkmws*.so" >/dev/null; then
+  # The interpreter the module was built for (CMake cache), else python3.
+  py="$(sed -n 's/^PKMWS_PYTHON3:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/null | head -n 1)"
+  PYTHONPATH="$build/python" "${py:-python3}" "$root/benchmarks/python_overhead.py" --report "$root/docs/benchmarks.md"
+else
+  echo "run.sh: the Python module is not built ($build/python); no Python overhead section" >&2
+fi
 echo "wrote docs/benchmarks.md and docs/figures/bench_error_vs_time.svg"

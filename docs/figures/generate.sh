@@ -18,4 +18,6 @@ for phi in 0 25 50; do
     "$pkmws" export "datasets/three_rpr_paminsa_phi${phi}_r${r}.json" -f svg -o "$d/levels/paminsa_phi${phi}_r${r}.svg"
   done
 done
+# The README's Python example (needs the module: build/python).
+PYTHONPATH=build/python "${PYTHON:-/usr/bin/python3}" examples/python/readme_figure.py "$d/python_workspace.png" >/dev/null
 echo "figures written to $d"

@@ -655,16 +655,48 @@ double time_contains(const PyRegion& r, const py::handle& points) {
   return n > 0 ? s / static_cast<double>(n) : 0.0;
 }
 
-double time_inverse(const PyMechanism& m, double x, double y, int repeats) {
-  const auto pose = make_pose(m, x, y, std::nullopt);
+// The loop inverse_many runs, without the arrays.
+double time_inverse(const PyMechanism& m, const py::handle& poses) {
+  const auto rows = pose_rows(m, poses);
+  const py::ssize_t n = rows.size();
+  const bool has_phi = rows.arr.shape(1) == 3;
+  auto in = rows.arr.unchecked<2>();
   py::gil_scoped_release release;
   std::size_t count = 0;
   const auto start = Clock::now();
-  for (int i = 0; i < repeats; ++i) count += m.model().inverse(pose).size();
+  guarded(*m.file, [&] {
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const mechanisms::Pose pose{in(i, 0), in(i, 1), has_phi ? in(i, 2) : rows.orientation};
+      count += m.model().inverse(pose).size();
+    }
+    return 0;
+  });
   const double s = std::chrono::duration<double>(Clock::now() - start).count();
   volatile std::size_t sink = count;
   (void)sink;
-  return repeats > 0 ? s / repeats : 0.0;
+  return n > 0 ? s / static_cast<double>(n) : 0.0;
+}
+
+// The loop evaluate_many runs (file's working mode first), without the arrays.
+double time_evaluate(const PyMechanism& m, const py::handle& poses) {
+  const auto rows = pose_rows(m, poses);
+  const py::ssize_t n = rows.size();
+  const bool has_phi = rows.arr.shape(1) == 3;
+  auto in = rows.arr.unchecked<2>();
+  py::gil_scoped_release release;
+  std::size_t count = 0;
+  const auto start = Clock::now();
+  guarded(*m.file, [&] {
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const mechanisms::Pose pose{in(i, 0), in(i, 1), has_phi ? in(i, 2) : rows.orientation};
+      count += m.model().evaluate(pose, m.file->criteria).size();
+    }
+    return 0;
+  });
+  const double s = std::chrono::duration<double>(Clock::now() - start).count();
+  volatile std::size_t sink = count;
+  (void)sink;
+  return n > 0 ? s / static_cast<double>(n) : 0.0;
 }
 
 }  // namespace
@@ -893,4 +925,5 @@ PYBIND11_MODULE(_pkmws, mod) {
   mod.def("_metric_names", [] { return design::metric_names(); });
   mod.def("_time_contains", &time_contains);
   mod.def("_time_inverse", &time_inverse);
+  mod.def("_time_evaluate", &time_evaluate);
 }
