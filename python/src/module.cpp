@@ -29,6 +29,7 @@
 #include "pkmws/geometry/inscribed_rectangle.hpp"
 #include "pkmws/geometry/polyline.hpp"
 #include "pkmws/geometry/region.hpp"
+#include "pkmws/grid/sampler.hpp"
 #include "pkmws/io/export.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "pkmws/io/parameters.hpp"
@@ -699,6 +700,88 @@ double time_evaluate(const PyMechanism& m, const py::handle& poses) {
   return n > 0 ? s / static_cast<double>(n) : 0.0;
 }
 
+// ---------------------------------------------------------------- grid samplers
+
+// The grid baseline (`pkmws grid`): one sampler run as a dict of the
+// SampleResult fields (areas in unit², times in ms); `mask=True` adds the
+// cell mask as a uint8 array (cartesian: (cells_y, cells_x), y upwards;
+// polar: (rings, sectors)). Criteria files sample their limited workspace,
+// as the command line does.
+py::dict grid_sample(const PyMechanism& m, std::size_t cells, const std::string& sampler, int depth, int threads,
+                     bool certified_bounds, bool mask) {
+  if (cells < 1 || cells > 16384) throw InputError("cells: must lie in [1, 16384]");
+  if (depth < 0 || depth > 20) throw InputError("depth: must lie in [0, 20]");
+  if (threads < 0) throw InputError("threads: must be >= 0");
+  const auto model = m.file->criteria.any() ? criteria::limited_mechanism(*m.file) : m.file->model;
+  grid::Execution exec;
+  exec.threads = threads;
+  py::dict out;
+  auto common = [&out](const grid::SampleResult& r) {
+    out["method"] = r.method;
+    out["kernel"] = r.kernel;
+    out["isa"] = r.isa;
+    out["threads"] = r.threads;
+    out["area"] = r.area;
+    out["area_lower"] = r.area_lower ? py::object(py::float_(*r.area_lower)) : py::object(py::none());
+    out["area_upper"] = r.area_upper ? py::object(py::float_(*r.area_upper)) : py::object(py::none());
+    out["bounds_certified"] = r.bounds_certified;
+    out["cells"] = r.cells;
+    out["points_tested"] = r.points_tested;
+    out["inside"] = r.inside;
+    out["time_ms"] = r.time_ms;
+  };
+  auto mask_array = [](const std::vector<std::uint8_t>& v, std::size_t rows, std::size_t cols) {
+    py::array_t<std::uint8_t> a({rows, cols});
+    std::copy(v.begin(), v.end(), a.mutable_data());
+    return a;
+  };
+  if (sampler == "cartesian") {
+    grid::CartesianOptions o;
+    o.cells_x = o.cells_y = cells;
+    o.certified_bounds = certified_bounds;
+    o.keep_mask = mask;
+    grid::CartesianResult r;
+    {
+      py::gil_scoped_release release;
+      r = guarded(*m.file, [&] { return grid::cartesian(*model, o, exec); });
+    }
+    common(r);
+    out["box"] = box_py(r.box);
+    if (mask) out["mask"] = mask_array(r.mask, o.cells_y, o.cells_x);
+  } else if (sampler == "polar") {
+    grid::PolarOptions o;
+    o.rings = cells;
+    o.sectors = std::max<std::size_t>(4, 4 * std::size_t(std::llround(std::numbers::pi * double(cells) / 4.0)));
+    o.certified_bounds = certified_bounds;
+    o.keep_mask = mask;
+    grid::PolarResult r;
+    {
+      py::gil_scoped_release release;
+      r = guarded(*m.file, [&] { return grid::polar(*model, o, exec); });
+    }
+    common(r);
+    out["centre"] = point_py(r.centre);
+    out["radius"] = r.radius;
+    if (mask) out["mask"] = mask_array(r.mask, o.rings, o.sectors);
+  } else if (sampler == "adaptive") {
+    grid::AdaptiveOptions o;
+    o.base_cells = cells;
+    o.depth = depth;
+    grid::AdaptiveResult r;
+    {
+      py::gil_scoped_release release;
+      r = guarded(*m.file, [&] { return grid::adaptive(*model, o, exec); });
+    }
+    common(r);
+    out["rule"] = r.rule;
+    out["undecided"] = r.undecided;
+    out["effective_cells"] = r.effective_cells;
+  } else {
+    throw InputError("sampler: expected cartesian, polar or adaptive, got \"" + sampler + "\"");
+  }
+  return out;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_pkmws, mod) {
@@ -915,7 +998,14 @@ PYBIND11_MODULE(_pkmws, mod) {
         const auto lw = limited(m, tolerance, true, threads);
         return PyRegion{bound == "inner" ? lw.region.inner : lw.region.outer, m.file->units};
       }, py::arg("bound") = "inner", py::arg("tolerance") = 1e-6, py::arg("threads") = 0)
-      .def("draw", &drawing, py::arg("x"), py::arg("y"), py::arg("phi") = py::none());
+      .def("draw", &drawing, py::arg("x"), py::arg("y"), py::arg("phi") = py::none())
+      .def("grid", &grid_sample, py::arg("cells") = 400, py::arg("sampler") = "cartesian", py::arg("depth") = 8,
+           py::arg("threads") = 0, py::arg("certified_bounds") = false, py::arg("mask") = false,
+           "The grid baseline (`pkmws grid`): sampler 'cartesian' (cells per side), 'polar' (cells rings) or\n"
+           "'adaptive' (cells root cells per side, `depth` levels); a dict with `area` (file's unit squared),\n"
+           "`area_lower`/`area_upper` (None unless certified_bounds and the kernel certifies cells),\n"
+           "`points_tested`, `time_ms`, ... and with mask=True the cell mask (uint8). Files with criteria\n"
+           "sample their criteria-limited workspace.");
 
   mod.def("_load_path", [](const std::string& path) { return PyMechanism{load_path(path)}; });
   mod.def("_load_document", [](const std::string& text, const std::string& origin) {

@@ -128,3 +128,31 @@ def test_plot_draws_true_arcs(tmp_path):
     assert (tmp_path / "ws.png").stat().st_size > 1000
     ax2 = pkmws.plot.workspace(pkmws.load(DATA / "moma_m3_l180.json").workspace())
     assert ax2.patches
+
+
+def test_grid_samplers_converge_to_the_exact_area():
+    """Mechanism.grid (the `pkmws grid` baseline) against the exact area and the CLI."""
+    import json
+    import subprocess
+
+    from conftest import CLI
+
+    m = pkmws.load(SOURCE_DIR / "datasets" / "moma_m1_g0_l250.json")
+    exact = m.workspace().area
+    r = m.grid(400, certified_bounds=True, mask=True)
+    assert r["kernel"] == "moma" and r["points_tested"] >= 400 * 400
+    assert r["area_lower"] <= exact <= r["area_upper"]
+    assert abs(r["area"] - exact) <= 0.01 * exact
+    assert r["mask"].shape == (400, 400) and r["mask"].dtype.name == "uint8"
+    assert int(r["mask"].sum()) == r["inside"]
+    cli = json.loads(subprocess.run([CLI, "grid", str(SOURCE_DIR / "datasets" / "moma_m1_g0_l250.json"), "--cells", "400",
+                                     "--json"], capture_output=True, text=True, check=True).stdout)
+    assert cli["area"] == r["area"]
+    polar = m.grid(200, sampler="polar")
+    assert abs(polar["area"] - exact) <= 0.02 * exact
+    adaptive = m.grid(32, sampler="adaptive", depth=6)
+    assert adaptive["area_lower"] <= exact <= adaptive["area_upper"]
+    with pytest.raises(ValueError, match="sampler"):
+        m.grid(10, sampler="hexagonal")
+    with pytest.raises(ValueError, match="cells"):
+        m.grid(0)
