@@ -85,7 +85,7 @@ def m3(l):
            "with eq. 5 (minus root, platform ahead of each slider) cannot put the platform in "
            "quadrant III. Choice made here: keep the printed guides and use the other root of "
            "eq. 4 (branch +1 on both legs: the platform lies behind each slider). " + M3_SHARES[l] +
-           " (checked by tests/mechanisms/moma_test.cpp; see docs/theory/moma.md).")
+           " (checked by tests/mechanisms/moma/datasets_test.cpp; see docs/theory/moma.md).")
 
 
 def m4_m5(l):

@@ -23,8 +23,8 @@
 
 #include "pkmws/bodies/bodies.hpp"
 #include "pkmws/io/mechanism_file.hpp"
-#include "../support/cli_runner.hpp"
-#include "classify.hpp"
+#include "support/cli_runner.hpp"
+#include "support/classify.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -32,7 +32,7 @@ using namespace pkmws;
 
 namespace {
 
-std::string dataset(const std::string& stem) { return std::string(PKMWS_SOURCE_DIR) + "/datasets/" + stem + ".json"; }
+using pkmws::test::dataset;
 
 using Result = pkmws::test::CliResult;
 using pkmws::test::slurp;

@@ -18,7 +18,7 @@
 #include "pkmws/bodies/bodies.hpp"
 #include "pkmws/geometry/primitives.hpp"
 #include "pkmws/io/mechanism_file.hpp"
-#include "classify.hpp"
+#include "support/classify.hpp"
 
 using namespace pkmws;
 using bodies::Shape;

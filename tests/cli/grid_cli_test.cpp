@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "../support/cli_runner.hpp"
+#include "support/cli_runner.hpp"
 
 namespace fs = std::filesystem;
 
@@ -31,9 +31,7 @@ fs::path scratch() {
 
 CliRun run(const std::string& args) { return pkmws::test::run_cli(args, scratch()); }
 
-std::string dataset(const std::string& stem) {
-  return std::string(PKMWS_SOURCE_DIR) + "/datasets/" + stem + ".json";
-}
+using pkmws::test::dataset;
 
 double exact_area(const std::string& stem) {
   const CliRun r = run("area " + dataset(stem) + " --json");

@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "../support/cli_runner.hpp"
+#include "support/cli_runner.hpp"
 
 namespace fs = std::filesystem;
 

@@ -12,6 +12,7 @@
 #include "pkmws/criteria/fields.hpp"
 #include "mechanisms/five_bar/criteria.hpp"
 #include "mechanisms/three_rpr/criteria.hpp"
+#include "support/mechanisms/five_bar.hpp"
 
 namespace {
 
@@ -32,11 +33,7 @@ ThreeRpr paminsa(double phi, std::optional<Box> window = std::nullopt) {
   return ThreeRpr(s.base(), s.platform(), ThreeRprActuation::revolute, phi, std::nullopt, window);
 }
 
-mechanisms::FiveBar dextar(int s1, int s2) {
-  mechanisms::FiveBarLeg a{{-0.1375, 0.0}, 0.23, 0.23, s1, std::nullopt, std::nullopt};
-  mechanisms::FiveBarLeg e{{0.1375, 0.0}, 0.23, 0.23, s2, std::nullopt, std::nullopt};
-  return mechanisms::FiveBar({a, e});
-}
+using pkmws::test::five_bar::dextar;
 
 // [Briot], first example: P = (0, 0.2), φ = 0 puts the instantaneous centre
 // I_1 of leg 1's twist (the meeting point of the force lines of legs 2 and 3)

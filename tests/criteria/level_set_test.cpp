@@ -13,6 +13,7 @@
 #include "pkmws/geometry/primitives.hpp"
 #include "mechanisms/five_bar/criteria.hpp"
 #include "mechanisms/three_rpr/criteria.hpp"
+#include "support/mechanisms/five_bar.hpp"
 
 namespace {
 
@@ -154,11 +155,7 @@ TEST(LevelSets, WidthShrinksWithTheToleranceAndBoundsNest) {
   }
 }
 
-mechanisms::FiveBar dextar(int s1, int s2) {
-  mechanisms::FiveBarLeg a{{-0.1375, 0.0}, 0.23, 0.23, s1, std::nullopt, std::nullopt};
-  mechanisms::FiveBarLeg e{{0.1375, 0.0}, 0.23, 0.23, s2, std::nullopt, std::nullopt};
-  return mechanisms::FiveBar({a, e});
-}
+using pkmws::test::five_bar::dextar;
 
 // Dense sampling: the fraction of a fine grid of cell centres of W's bbox that
 // satisfy the criterion; its error is at most (cells met by the boundary) x h²,

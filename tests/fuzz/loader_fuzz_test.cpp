@@ -19,27 +19,14 @@
 #include <nlohmann/json.hpp>
 
 #include "pkmws/io/mechanism_file.hpp"
+#include "support/fixtures.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
 
-std::vector<fs::path> datasets() {
-  std::vector<fs::path> out;
-  for (const auto& e : fs::directory_iterator(fs::path(PKMWS_SOURCE_DIR) / "datasets")) {
-    if (e.path().extension() == ".json") out.push_back(e.path());
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using pkmws::test::slurp;
 
 // Every value's JSON pointer (objects, arrays and leaves), the root excluded.
 void pointers(const json& v, const json::json_pointer& at, std::vector<json::json_pointer>& out) {
@@ -156,7 +143,7 @@ TEST(LoaderFuzz, MutatedDatasetsLoadOrFailWithOneLine) {
   const fs::path file = dir / "mutated.json";
   std::size_t runs = 0, loaded = 0;
   std::vector<std::string> failures;
-  for (const fs::path& p : datasets()) {
+  for (const fs::path& p : pkmws::test::dataset_files()) {
     const std::string text = slurp(p);
     const json doc = json::parse(text);
     std::vector<json::json_pointer> ptrs;
@@ -189,7 +176,7 @@ TEST(LoaderFuzz, MutatedDatasetsLoadOrFailWithOneLine) {
   }
   fs::remove_all(dir);
   EXPECT_GT(runs, 1000u);
-  EXPECT_EQ(loaded, datasets().size());
+  EXPECT_EQ(loaded, pkmws::test::dataset_files().size());
   EXPECT_TRUE(failures.empty()) << failures.size() << " defects, the first: " << failures.front();
 }
 

@@ -14,6 +14,7 @@
 #include "pkmws/geometry/inscribed_rectangle.hpp"
 #include "pkmws/geometry/primitives.hpp"
 #include "pkmws/io/mechanism_file.hpp"
+#include "support/fixtures.hpp"
 
 using namespace pkmws::geometry;
 
@@ -146,7 +147,7 @@ TEST(InscribedRectangle, RandomRegionsAgainstARaster) {
 }
 
 TEST(InscribedRectangle, MomaM1Workspace) {
-  const auto f = pkmws::io::load_mechanism(std::string(PKMWS_SOURCE_DIR) + "/datasets/moma_m1_g0_l250.json");
+  const auto f = pkmws::io::load_mechanism(pkmws::test::dataset("moma_m1_g0_l250"));
   const Region w = f.model->workspace();
   const Component c = w.components().at(0);
   const auto rect = largest_inscribed_rectangle(c, kPrecision, {}, &w);

@@ -8,6 +8,7 @@
 
 #include "pkmws/grid/compare.hpp"
 #include "pkmws/io/mechanism_file.hpp"
+#include "support/fixtures.hpp"
 
 using namespace pkmws;
 
@@ -43,7 +44,7 @@ TEST(GridCompare, LuckyCoarseRunsDoNotCount) {
 }
 
 TEST(GridCompare, ShortRunOnMomaM1) {
-  const auto m = io::load_mechanism(std::string(PKMWS_SOURCE_DIR) + "/datasets/moma_m1_g0_l250.json");
+  const auto m = io::load_mechanism(pkmws::test::dataset("moma_m1_g0_l250"));
   grid::CompareOptions o;
   o.ladder = {50, 100, 200, 400};
   o.depths = {2, 4, 6, 8};
@@ -68,7 +69,7 @@ TEST(GridCompare, ShortRunOnMomaM1) {
 }
 
 TEST(GridCompare, BudgetStopsTheLadder) {
-  const auto m = io::load_mechanism(std::string(PKMWS_SOURCE_DIR) + "/datasets/moma_m1_g0_l250.json");
+  const auto m = io::load_mechanism(pkmws::test::dataset("moma_m1_g0_l250"));
   grid::CompareOptions o;
   o.ladder = {100, 200, 400};
   o.depths = {2, 4};

@@ -14,30 +14,20 @@
 #include "pkmws/geometry/region.hpp"
 #include "pkmws/grid/kernel.hpp"
 #include "pkmws/io/mechanism_file.hpp"
+#include "support/fixtures.hpp"
 
 using namespace pkmws;
 using geometry::Point;
 
 namespace {
 
-std::string dataset(const std::string& stem) {
-  return std::string(PKMWS_SOURCE_DIR) + "/datasets/" + stem + ".json";
-}
-
-std::vector<std::string> moma_files() {
-  std::vector<std::string> out;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(PKMWS_SOURCE_DIR) + "/datasets")) {
-    const std::string name = e.path().filename().string();
-    if (name.rfind("moma_", 0) == 0 && e.path().extension() == ".json") out.push_back(e.path().string());
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
+using pkmws::test::dataset;
+using pkmws::test::dataset_files;
 
 }  // namespace
 
 TEST(GridKernel, MomaFastPathMatchesReachableOnEveryDataset) {
-  const auto files = moma_files();
+  const auto files = dataset_files("moma_");
   ASSERT_GE(files.size(), 27u);
   for (const auto& path : files) {
     const auto mech = io::load_mechanism(path);

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "../support/load_error.hpp"
+#include "support/load_error.hpp"
 
 namespace pkmws::test {
 namespace {

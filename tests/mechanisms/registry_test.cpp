@@ -20,6 +20,7 @@
 #include "pkmws/io/mechanism_file.hpp"
 #include "pkmws/io/plot.hpp"
 #include "bodies/load_bodies.hpp"
+#include "support/fixtures.hpp"
 
 namespace {
 
@@ -29,11 +30,7 @@ namespace fs = std::filesystem;
 // One bundled dataset per keyword (the first in name order), and the toy's file.
 std::map<std::string, io::MechanismFile> one_file_per_kind() {
   std::map<std::string, io::MechanismFile> out;
-  std::set<fs::path> files;
-  for (const auto& e : fs::directory_iterator(fs::path(PKMWS_SOURCE_DIR) / "datasets")) {
-    if (e.path().extension() == ".json") files.insert(e.path());
-  }
-  for (const auto& p : files) {
+  for (const auto& p : pkmws::test::dataset_files()) {
     std::ifstream in(p);
     const auto doc = nlohmann::json::parse(in);
     const std::string kind = doc.at("mechanism").get<std::string>();

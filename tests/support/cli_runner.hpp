@@ -11,19 +11,14 @@
 #include <sstream>
 #include <string>
 
+#include "support/fixtures.hpp"
+
 namespace pkmws::test {
 
 struct CliResult {
   int status = -1;
   std::string out, err;
 };
-
-inline std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// `pkmws ARGS`, its output captured through files in `dir` (created, and the
 /// capture files removed afterwards).

@@ -10,14 +10,16 @@
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "mechanisms/biglide/criteria.hpp"
+#include "support/fixtures.hpp"
 
 namespace {
 
 using namespace pkmws;
 using geometry::Point;
+using pkmws::test::dataset;
 
 io::MechanismFile simplified() {
-  return io::load_mechanism(std::string(PKMWS_SOURCE_DIR) + "/datasets/biglide_simplified.json");
+  return io::load_mechanism(dataset("biglide_simplified"));
 }
 
 TEST(BiglideVelocityRatio, SurrogateIsTheSquaredRatioWithItsDerivatives) {
@@ -88,10 +90,10 @@ TEST(BiglideVelocityRatio, CertifiedBoundsContainADenseGridEstimate) {
 }
 
 TEST(BiglideVelocityRatio, OtherMechanismsAndTheRealSchemeAreRefusedClearly) {
-  const auto real = io::load_mechanism(std::string(PKMWS_SOURCE_DIR) + "/datasets/biglide_real.json");
+  const auto real = io::load_mechanism(dataset("biglide_real"));
   EXPECT_THROW(criteria::fields_for(real, "velocity_ratio"), io::InputError);
   EXPECT_THROW(criteria::fields_for(simplified(), "pressure_angle"), io::InputError);
-  const auto dextar = io::load_mechanism(std::string(PKMWS_SOURCE_DIR) + "/datasets/five_bar_dextar_pp.json");
+  const auto dextar = io::load_mechanism(dataset("five_bar_dextar_pp"));
   EXPECT_THROW(criteria::fields_for(dextar, "velocity_ratio"), io::InputError);
 }
 
