@@ -656,8 +656,10 @@ double time_contains(const PyRegion& r, const py::handle& points) {
   return n > 0 ? s / static_cast<double>(n) : 0.0;
 }
 
-// The loop inverse_many runs, without the arrays.
-double time_inverse(const PyMechanism& m, const py::handle& poses) {
+// Seconds per pose of `per_pose(pose) -> count` over the poses, the loop a
+// vectorised method runs, without the arrays.
+template <class PerPose>
+double time_pose_loop(const PyMechanism& m, const py::handle& poses, PerPose&& per_pose) {
   const auto rows = pose_rows(m, poses);
   const py::ssize_t n = rows.size();
   const bool has_phi = rows.arr.shape(1) == 3;
@@ -667,8 +669,7 @@ double time_inverse(const PyMechanism& m, const py::handle& poses) {
   const auto start = Clock::now();
   guarded(*m.file, [&] {
     for (py::ssize_t i = 0; i < n; ++i) {
-      const mechanisms::Pose pose{in(i, 0), in(i, 1), has_phi ? in(i, 2) : rows.orientation};
-      count += m.model().inverse(pose).size();
+      count += per_pose(mechanisms::Pose{in(i, 0), in(i, 1), has_phi ? in(i, 2) : rows.orientation});
     }
     return 0;
   });
@@ -678,26 +679,15 @@ double time_inverse(const PyMechanism& m, const py::handle& poses) {
   return n > 0 ? s / static_cast<double>(n) : 0.0;
 }
 
-// The loop evaluate_many runs (file's working mode first), without the arrays.
+// The loop inverse_many runs.
+double time_inverse(const PyMechanism& m, const py::handle& poses) {
+  return time_pose_loop(m, poses, [&m](const mechanisms::Pose& p) { return m.model().inverse(p).size(); });
+}
+
+// The loop evaluate_many runs (file's working mode first).
 double time_evaluate(const PyMechanism& m, const py::handle& poses) {
-  const auto rows = pose_rows(m, poses);
-  const py::ssize_t n = rows.size();
-  const bool has_phi = rows.arr.shape(1) == 3;
-  auto in = rows.arr.unchecked<2>();
-  py::gil_scoped_release release;
-  std::size_t count = 0;
-  const auto start = Clock::now();
-  guarded(*m.file, [&] {
-    for (py::ssize_t i = 0; i < n; ++i) {
-      const mechanisms::Pose pose{in(i, 0), in(i, 1), has_phi ? in(i, 2) : rows.orientation};
-      count += m.model().evaluate(pose, m.file->criteria).size();
-    }
-    return 0;
-  });
-  const double s = std::chrono::duration<double>(Clock::now() - start).count();
-  volatile std::size_t sink = count;
-  (void)sink;
-  return n > 0 ? s / static_cast<double>(n) : 0.0;
+  return time_pose_loop(m, poses,
+                        [&m](const mechanisms::Pose& p) { return m.model().evaluate(p, m.file->criteria).size(); });
 }
 
 // ---------------------------------------------------------------- grid samplers
