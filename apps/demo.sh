@@ -12,7 +12,7 @@ echo "Reference case ([Vasilic] §4.1, M1: h = 200, l = 250, R = (-100, 0), (100
 "$pkmws" area datasets/moma_m1_g0_l250.json
 echo
 echo "3-RRP of [Mitsi] (reconstructed), crank angles 60, 10, 10 deg: both assembly modes ([Mitsi] fig. 4):"
-"$pkmws" dk datasets/three_rrp_mitsi.json 60 10 10 --svg "$out/three_rrp_mitsi_assembly" \
+"$pkmws" dk datasets/three_rrp_mitsi.json 60 10 10 --json --svg "$out/three_rrp_mitsi_assembly" \
   >"$out/three_rrp_mitsi_dk.json"
 echo "  $out/three_rrp_mitsi_dk.json (poses, platform points, the eliminant and its roots),"
 echo "  $out/three_rrp_mitsi_assembly_1.svg, $out/three_rrp_mitsi_assembly_2.svg"
