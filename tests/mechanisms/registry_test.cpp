@@ -19,7 +19,7 @@
 #include "pkmws/geometry/inscribed.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "pkmws/io/plot.hpp"
-#include "bodies/load_bodies.hpp"
+#include "io/load_bodies.hpp"
 #include "support/fixtures.hpp"
 
 namespace {

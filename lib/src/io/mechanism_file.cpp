@@ -6,7 +6,7 @@
 #include <map>
 #include <sstream>
 
-#include "bodies/load_bodies.hpp"
+#include "io/load_bodies.hpp"
 #include "io/registry.hpp"
 
 namespace pkmws::io {

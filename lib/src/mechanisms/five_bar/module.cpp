@@ -1,6 +1,6 @@
 // The five-bar module's capabilities: criterion fields (criteria.cpp) and a
 // body model (rig.cpp).
-#include "bodies/load_bodies.hpp"
+#include "io/load_bodies.hpp"
 #include "mechanisms/five_bar/criteria.hpp"
 #include "mechanisms/five_bar/five_bar.hpp"
 

@@ -15,7 +15,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "bodies/load_bodies.hpp"
+#include "io/load_bodies.hpp"
 #include "bodies/rig_support.hpp"
 #include "mechanisms/five_bar/five_bar.hpp"
 

@@ -1,6 +1,6 @@
 // The MOMA module's capabilities: rod-on-guide legs (the vectorised grid
 // kernel) and a body model (rig.cpp).
-#include "bodies/load_bodies.hpp"
+#include "io/load_bodies.hpp"
 #include "mechanisms/moma/moma.hpp"
 
 namespace pkmws::bodies {

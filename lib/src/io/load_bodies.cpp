@@ -5,7 +5,7 @@
 //           obstacles [{name, polygon [[x, y], ...]}], allowed_contacts [[name, name], ...]
 // five_bar: platform_joint, proximal [{radius} × 2], distal [{radius} × 2], obstacles, allowed_contacts
 // Every group is optional. Lengths in the file's unit, angles in degrees.
-#include "bodies/load_bodies.hpp"
+#include "io/load_bodies.hpp"
 
 #include <cmath>
 #include <numbers>
