@@ -27,7 +27,20 @@ def no_constant(name):
 
 
 def valid(command, *args):
+    return checked(command, args, run(command, *args, "--json", check=False))
+
+
+def valid_or_refused(command, *args, words):
+    """One run: the report validated against its schema, or None when the CLI
+    refused the file with a one-line error containing one of `words`."""
     r = run(command, *args, "--json", check=False)
+    if r.returncode == 2:
+        assert any(w in r.stderr for w in words), r.stderr
+        return None
+    return checked(command, args, r)
+
+
+def checked(command, args, r):
     assert r.returncode == 0, f"pkmws {command} {' '.join(map(str, args))}: {r.stderr.strip()}"
     j = json.loads(r.stdout, parse_constant=no_constant)
     errors = [f"{'/'.join(map(str, e.absolute_path))}: {e.message}" for e in VALIDATORS[command].iter_errors(j)]
@@ -69,11 +82,8 @@ def test_every_command_json_matches_its_schema(dataset, tmp_path):
         lo, hi = doc["theta_limits_deg"]
         pose = [str((lo + hi) / 2)]
     else:
-        r = run("area", dataset, "--json", "--max-time", BOUND, check=False)
-        if r.returncode == 2:
-            assert "unbounded" in r.stderr or "leg_limits" in r.stderr, r.stderr
-        else:
-            area = valid("area", dataset, "--max-time", BOUND)
+        area = valid_or_refused("area", dataset, "--max-time", BOUND, words=("unbounded", "leg_limits"))
+        if area is not None:
             assert area["units"] == doc["units"]
             if area["components"]:
                 pose = area["components"][0]["inscribed_circle"]["center"]
@@ -109,17 +119,11 @@ def test_every_command_json_matches_its_schema(dataset, tmp_path):
     refused("dk", dataset, *(["1"] * (len(names) + 1)), says="dk: expected ")
 
     # grid, compare (exact reference only: a criteria file's certified reference is not bounded by --max-time)
-    r = run("grid", dataset, "--cells", "8", "--json", check=False)
-    if r.returncode == 2:
-        assert "unbounded" in r.stderr or "leg_limits" in r.stderr, r.stderr
-    else:
-        valid("grid", dataset, "--cells", "8")
-        if "criteria" not in doc and "bodies" not in doc:
-            r = run("compare", dataset, "--ladder", "8", "--depths", "2", "--budget", "1", "--json", check=False)
-            if r.returncode == 2:  # no exact reference (real-scheme biglide, Pi-joint)
-                assert any(w in r.stderr for w in ("not bounded by arcs and segments", "no planar workspace")), r.stderr
-            else:
-                valid("compare", dataset, "--ladder", "8", "--depths", "2", "--budget", "1")
+    grid = valid_or_refused("grid", dataset, "--cells", "8", words=("unbounded", "leg_limits"))
+    if grid is not None and "criteria" not in doc and "bodies" not in doc:
+        # no exact reference: real-scheme biglide, Pi-joint
+        valid_or_refused("compare", dataset, "--ladder", "8", "--depths", "2", "--budget", "1",
+                         words=("not bounded by arcs and segments", "no planar workspace"))
 
     # export: the boundary as CSV (outer enclosure where certified)
     out = tmp_path / "ws.csv"
@@ -141,13 +145,9 @@ def test_every_command_json_matches_its_schema(dataset, tmp_path):
     limits = [k for k in CRITERION if k in doc.get("criteria", {})]
     if limits:
         k = limits[0]
-        r = run("levels", dataset, "--criterion", CRITERION[k], "--levels", doc["criteria"][k], "--tolerance", "1e-2",
-                "--max-time", BOUND, "--json", check=False)
-        if r.returncode == 2:
-            assert any(w in r.stderr for w in ("leg_limits", "criterion", "--max-time")), r.stderr
-        else:
-            j = valid("levels", dataset, "--criterion", CRITERION[k], "--levels", doc["criteria"][k], "--tolerance",
-                      "1e-2", "--max-time", BOUND)
+        j = valid_or_refused("levels", dataset, "--criterion", CRITERION[k], "--levels", doc["criteria"][k],
+                             "--tolerance", "1e-2", "--max-time", BOUND, words=("leg_limits", "criterion", "--max-time"))
+        if j is not None:
             assert j["units"] == doc["units"] and j["criterion_units"] in ("deg", "N", "V_i/V_y")
 
     # explain: files with bodies
