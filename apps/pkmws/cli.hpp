@@ -55,6 +55,11 @@ class CertifiedWork {
   /// What a result cut short by the deadline says about itself.
   std::string stopped_note() const;
   double max_seconds() const { return max_seconds_; }
+  /// Runs `job`, work that cannot stop part-way (the exact Boolean operations
+  /// that turn certified cells into an exported region, the file's content),
+  /// and waits for it until the deadline. Past it: `pkmws: error: <refusal>` on
+  /// stderr and exit status 2 at once, nothing written. No deadline: runs `job`.
+  std::string finish_by_deadline(const std::function<std::string()>& job, const std::string& refusal) const;
 
  private:
   struct Line;

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <cstdlib>
 #include <iostream>
 #include <mutex>
@@ -247,6 +248,25 @@ std::string CertifiedWork::stopped_note() const {
   std::snprintf(buf, sizeof buf,
                 "stopped at --max-time %g s: the bounds are valid but wider than the tolerance asked for", max_seconds_);
   return buf;
+}
+
+std::string CertifiedWork::finish_by_deadline(const std::function<std::string()>& job,
+                                             const std::string& refusal) const {
+  if (!(max_seconds_ > 0.0)) return job();
+  const auto deadline =
+      start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(max_seconds_));
+  std::future<std::string> result = std::async(std::launch::async, job);
+  if (result.wait_until(deadline) == std::future_status::ready) return result.get();
+  // The job cannot be interrupted (one CGAL operation may run for minutes):
+  // the process ends here, before anything is written; the thread ends with it.
+  {
+    std::lock_guard lock(line_->mutex);
+    if (line_->drawn) std::fprintf(stderr, "\r\033[K");
+  }
+  std::fflush(stdout);
+  std::fprintf(stderr, "pkmws: error: %s\n", refusal.c_str());
+  std::fflush(stderr);
+  std::_Exit(2);
 }
 
 void add_max_time_option(CLI::App* sub, double& seconds) {

@@ -72,19 +72,26 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       print_json(j);
       return 0;
     };
-    auto refuse_stopped = [&work] {
-      throw io::InputError("--max-time: " + work.stopped_note() + "; nothing written (give more time)");
-    };
+    char limit[160];
+    std::snprintf(limit, sizeof limit, "--max-time: stopped at %g s before the export was complete; nothing written (give more time)",
+                  a->max_time);
+    const std::string refusal = limit;
+    auto refuse_stopped = [&refusal] { throw io::InputError(refusal); };
     if (a->criterion.empty() != a->levels.empty()) throw io::InputError("--criterion and --levels go together");
     if (!a->criterion.empty()) {
       if (format != io::ExportFormat::svg && format != io::ExportFormat::csv) {
         throw io::InputError("--criterion: the bands export as svg (figure) or csv (traced level curves)");
       }
       const io::MechanismFile mech = io::load_mechanism(a->file);
-      bool stopped = false;
-      const std::string content =
-          bands_export(mech, a->criterion, a->levels, format == io::ExportFormat::svg, 1e-4, &work, &stopped);
-      if (stopped) refuse_stopped();
+      const std::string content = work.finish_by_deadline(
+          [&] {
+            bool stopped = false;
+            std::string c =
+                bands_export(mech, a->criterion, a->levels, format == io::ExportFormat::svg, 1e-4, &work, &stopped);
+            if (stopped) refuse_stopped();
+            return c;
+          },
+          refusal);
       io::write_file_atomic(a->out, content);
       return done(mech, "bands of " + a->criterion, "");
     }
@@ -96,9 +103,14 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     if (format == io::ExportFormat::svg && !a->bare && !a->real) {
       // The figure: what `pkmws area` computes, drawn as `pkmws batch` draws it
       // (criteria files: the certified limited region; bodies: the real workspace).
-      const AreaResult result = compute_area(mech, 7, &work);
-      if (result.report.contains("stopped")) refuse_stopped();
-      io::write_file_atomic(a->out, file_figure(mech, result));
+      const std::string content = work.finish_by_deadline(
+          [&] {
+            const AreaResult result = compute_area(mech, 7, &work);
+            if (result.report.contains("stopped")) refuse_stopped();
+            return file_figure(mech, result);
+          },
+          refusal);
+      io::write_file_atomic(a->out, content);
       return done(mech, "figure", "");
     }
     // With criteria limits ([Briot] figs. 10, 13): the certified limited
@@ -120,73 +132,79 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       throw io::InputError(a->file + ": --real needs `bodies` in the file (docs/format.md (bodies))");
     }
     require_bound(limited || a->real);
-    std::string limited_caption;
-    certified::CertifiedRegion enclosure;
-    if (limited) {
-      certified::LevelSetOptions lo;
-      lo.relative_tolerance = kLimitedTolerance;
-      lo.build_regions = true;
-      const auto lw = criteria::limited_workspace(mech, criteria::file_limits(mech), work.options(lo));
-      if (lw.detail.stopped) refuse_stopped();
-      enclosure = lw.region;
-      for (const auto& l : criteria::file_limits(mech)) {
-        char buf[96];
-        std::snprintf(buf, sizeof buf, "%s%s <= %g", limited_caption.empty() ? "" : ", ", l.name.c_str(), l.threshold);
-        limited_caption += buf;
-      }
-    } else {
-      enclosure = workspace_enclosure_of(mech);
-    }
-    require_bound(a->real || !enclosure.exact);
-    const std::string bound = !a->bound.empty() ? a->bound : a->real ? "inner" : "outer";
-    geometry::Region region = enclosure.exact || bound == "outer" ? enclosure.outer : enclosure.inner;
-    if (enclosure.outer.empty()) {
-      throw io::InputError(a->file + ": the workspace is empty (impossible geometry): nothing to export");
-    }
-    io::ExportOptions options;
-    options.units = mech.units;
-    options.tolerance = tolerance_given ? a->tolerance : 0.0;
-    if (!enclosure.exact) {
-      options.bound = bound == "inner" ? io::Bound::inner : io::Bound::outer;
-      options.area_lower = enclosure.area_lower;
-      options.area_upper = enclosure.area_upper;
-    }
-    if (a->real) {
-      // Real = reachable − interference: an enclosure even when reachable is exact.
-      const auto real = real_workspace_of(mech, region, 7).real;
-      region = bound == "inner" ? real.inner : real.outer;
-      options.bound = bound == "inner" ? io::Bound::inner : io::Bound::outer;
-      options.area_lower = real.area_lower;
-      options.area_upper = real.area_upper;
-      if (real.outer.empty()) throw io::InputError(a->file + ": the real workspace is empty: nothing to export");
-    }
-    std::string content;
-    switch (format) {
-      case io::ExportFormat::svg:
-        if (a->bare) {
-          content = io::to_svg(region, options);
-        } else {
-          // --real: the real workspace's inner enclosure (the figure without --real draws it outlined).
-          io::FigureOptions figure;
-          figure.title = mech.name;
-          figure.region_legend = "real workspace (inner enclosure)";
-          char area[64];
-          std::snprintf(area, sizeof area, "%.10g", region.area());
-          figure.caption = "Inner enclosure of the real workspace (certainly reachable without collision): area " +
-                           std::string(area) + " " + area_unit(mech) + ".";
-          const mechanisms::Pose pose = sample_pose(mech, region);
-          figure.parts = figure_parts(mech, {pose.x, pose.y});
-          content = io::workspace_figure(mech, region, pose, figure);
-        }
-        break;
-      case io::ExportFormat::dxf: content = io::to_dxf(region, options); break;
-      case io::ExportFormat::wkt: content = io::to_wkt(region, options); break;
-      case io::ExportFormat::geojson: content = io::to_geojson(region, options); break;
-      case io::ExportFormat::csv: content = io::to_csv(region, options); break;
-    }
+    std::string bound_written;  // the enclosure written ("" for an exact region), for --json
+    const std::string content = work.finish_by_deadline(
+        [&]() -> std::string {
+          std::string limited_caption;
+          certified::CertifiedRegion enclosure;
+          if (limited) {
+            certified::LevelSetOptions lo;
+            lo.relative_tolerance = kLimitedTolerance;
+            lo.build_regions = true;
+            const auto lw = criteria::limited_workspace(mech, criteria::file_limits(mech), work.options(lo));
+            if (lw.detail.stopped) refuse_stopped();
+            enclosure = lw.region;
+            for (const auto& l : criteria::file_limits(mech)) {
+              char buf[96];
+              std::snprintf(buf, sizeof buf, "%s%s <= %g", limited_caption.empty() ? "" : ", ", l.name.c_str(), l.threshold);
+              limited_caption += buf;
+            }
+          } else {
+            enclosure = workspace_enclosure_of(mech);
+          }
+          require_bound(a->real || !enclosure.exact);
+          const std::string bound = !a->bound.empty() ? a->bound : a->real ? "inner" : "outer";
+          geometry::Region region = enclosure.exact || bound == "outer" ? enclosure.outer : enclosure.inner;
+          if (enclosure.outer.empty()) {
+            throw io::InputError(a->file + ": the workspace is empty (impossible geometry): nothing to export");
+          }
+          io::ExportOptions options;
+          options.units = mech.units;
+          options.tolerance = tolerance_given ? a->tolerance : 0.0;
+          if (!enclosure.exact) {
+            options.bound = bound == "inner" ? io::Bound::inner : io::Bound::outer;
+            options.area_lower = enclosure.area_lower;
+            options.area_upper = enclosure.area_upper;
+          }
+          if (a->real) {
+            // Real = reachable − interference: an enclosure even when reachable is exact.
+            const auto real = real_workspace_of(mech, region, 7).real;
+            region = bound == "inner" ? real.inner : real.outer;
+            options.bound = bound == "inner" ? io::Bound::inner : io::Bound::outer;
+            options.area_lower = real.area_lower;
+            options.area_upper = real.area_upper;
+            if (real.outer.empty()) throw io::InputError(a->file + ": the real workspace is empty: nothing to export");
+          }
+          std::string text;
+          switch (format) {
+            case io::ExportFormat::svg:
+              if (a->bare) {
+                text = io::to_svg(region, options);
+              } else {
+                // --real: the real workspace's inner enclosure (the figure without --real draws it outlined).
+                io::FigureOptions figure;
+                figure.title = mech.name;
+                figure.region_legend = "real workspace (inner enclosure)";
+                char area[64];
+                std::snprintf(area, sizeof area, "%.10g", region.area());
+                figure.caption = "Inner enclosure of the real workspace (certainly reachable without collision): area " +
+                                 std::string(area) + " " + area_unit(mech) + ".";
+                const mechanisms::Pose pose = sample_pose(mech, region);
+                figure.parts = figure_parts(mech, {pose.x, pose.y});
+                text = io::workspace_figure(mech, region, pose, figure);
+              }
+              break;
+            case io::ExportFormat::dxf: text = io::to_dxf(region, options); break;
+            case io::ExportFormat::wkt: text = io::to_wkt(region, options); break;
+            case io::ExportFormat::geojson: text = io::to_geojson(region, options); break;
+            case io::ExportFormat::csv: text = io::to_csv(region, options); break;
+          }
+          bound_written = enclosure.exact && !a->real ? "" : bound;
+          return text;
+        },
+        refusal);
     io::write_file_atomic(a->out, content);
-    return done(mech, format == io::ExportFormat::svg && !a->bare ? "figure" : "boundary",
-                enclosure.exact && !a->real ? "" : bound);
+    return done(mech, format == io::ExportFormat::svg && !a->bare ? "figure" : "boundary", bound_written);
   }});
 }
 

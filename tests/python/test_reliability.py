@@ -4,6 +4,7 @@ instead of stalling the suite."""
 import json
 import pathlib
 import subprocess
+import time
 
 import pytest
 
@@ -137,6 +138,24 @@ def test_export_stopped_by_max_time_writes_nothing(tmp_path):
     refused(r, "--max-time", "nothing written")
     assert not out.exists()
     assert list(tmp_path.iterdir()) == []
+
+
+def test_export_deadline_covers_building_the_enclosure(tmp_path):
+    # Certifying this region takes about a second; building its outer
+    # enclosure from the cells (exact Boolean operations) took minutes and
+    # used to ignore --max-time. Whatever the machine, the command either
+    # finishes or refuses at the deadline: never minutes past it.
+    out = tmp_path / "limited.csv"
+    started = time.monotonic()
+    r = pkmws("export", DATASET / "five_bar_dextar_pp_alpha60.json", "-f", "csv", "--bound", "outer",
+              "-o", out, "--max-time", "2", timeout=120)
+    elapsed = time.monotonic() - started
+    if r.returncode == 0:
+        assert out.exists()
+    else:
+        refused(r, "--max-time", "stopped at 2 s", "nothing written")
+        assert list(tmp_path.iterdir()) == []
+    assert elapsed < 60, elapsed
 
 
 def test_grid_cells_beyond_the_limit_are_refused():
