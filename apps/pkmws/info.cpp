@@ -16,7 +16,7 @@ void add_info(CLI::App& app, std::vector<Command>& commands) {
   sub->add_flag("--json", *json, "Print the validated document with `derived` (docs/schema/info.output.schema.json)");
   commands.push_back({sub, [file, json] {
     const auto mech = io::load_mechanism(*file);
-    Json out = mech.document;
+    Json out = Json::parse(io::document_text(mech));
     Json derived{{"dof", mech.model->dof()}};
     derived.update(joint_vocabulary(mech));
     // The parameter model (pkmws/io/parameters.hpp): every number by field path, with type and unit.

@@ -1,5 +1,5 @@
 // pkmws._pkmws: the Python extension (pybind11) behind python/pkmws/__init__.py.
-// It uses the public headers only (no CGAL): io::load_mechanism / parse_mechanism,
+// It uses the public headers only (no CGAL): io::load_mechanism / parse_mechanism_text,
 // the abstract Mechanism interface, geometry::Region and its helpers, io exports,
 // design sweeps and the criteria functions taking a MechanismFile.
 //
@@ -42,7 +42,6 @@ namespace {
 using namespace pkmws;
 using geometry::Point;
 using io::InputError;
-using Json = nlohmann::json;
 using File = std::shared_ptr<const io::MechanismFile>;
 using Clock = std::chrono::steady_clock;
 
@@ -64,7 +63,6 @@ auto guarded(const io::MechanismFile& file, F&& fn) -> decltype(fn()) {
   }
 }
 
-py::object json_to_py(const Json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
 
 py::tuple point_py(Point p) { return py::make_tuple(p.x, p.y); }
 
@@ -221,57 +219,32 @@ File load_path(const std::string& path) {
 }
 
 File load_document(const std::string& text, const std::string& origin) {
-  Json doc;
-  try {
-    doc = Json::parse(text);
-  } catch (const std::exception& e) {
-    throw InputError(origin + ": not valid JSON (" + e.what() + ")");
-  }
-  try {
-    return std::make_shared<const io::MechanismFile>(io::parse_mechanism(doc, origin));
-  } catch (const InputError& e) {
-    throw InputError(origin + ": " + e.what());
-  }
+  return std::make_shared<const io::MechanismFile>(io::parse_mechanism_text(text, origin));
 }
 
 // The numbers at field paths of the file ("legs[1].rod_length").
 py::object get_parameter(const PyMechanism& m, const std::string& path) {
-  const Json& node = io::field_at(m.file->document, path, m.file->path, "is not a field of the file");
-  if (node.is_null()) return py::none();
-  if (node.is_number_integer()) return py::int_(node.get<std::int64_t>());
-  if (!node.is_number()) throw InputError(m.file->path + ": '" + path + "' is not a number");
-  return py::float_(node.get<double>());
+  const io::Parameter p = io::parameter_info(*m.file, path);
+  if (p.type == "integer") return py::int_(static_cast<std::int64_t>(p.value));
+  return py::float_(p.value);
 }
 
 // A new mechanism: the file's document with the values set, validated by the
 // loader (its one-line messages, naming the file).
 PyMechanism with_parameters(const PyMechanism& m, const py::dict& values) {
-  Json doc = m.file->document;
+  std::vector<std::pair<std::string, double>> set;
   for (const auto& [key, value] : values) {
     const std::string path = py::str(key);
-    Json& node = io::field_at(doc, path, m.file->path, "is not a field of the file");
-    if (!node.is_null() && !node.is_number()) throw InputError(m.file->path + ": '" + path + "' is not a number");
     if (py::isinstance<py::bool_>(value)) {
       throw InputError(m.file->path + ": '" + path + "': expected a number, got a bool");
-    } else if (py::isinstance<py::int_>(value)) {
-      node = value.cast<std::int64_t>();
-    } else {
-      double v = 0.0;
-      try {
-        v = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
-      } catch (const py::error_already_set&) {
-        throw InputError(m.file->path + ": '" + path + "': expected a number");
-      }
-      if (!std::isfinite(v)) throw InputError(m.file->path + ": '" + path + "': must be a finite number");
-      node = v;
+    }
+    try {
+      set.emplace_back(path, py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>());
+    } catch (const py::error_already_set&) {
+      throw InputError(m.file->path + ": '" + path + "': expected a number");
     }
   }
-  File file;
-  try {
-    file = std::make_shared<const io::MechanismFile>(io::parse_mechanism(doc, m.file->path));
-  } catch (const InputError& e) {
-    throw InputError(m.file->path + ": " + e.what());
-  }
+  File file = std::make_shared<const io::MechanismFile>(io::with_parameters(*m.file, set));
   return PyMechanism{std::move(file)};
 }
 
@@ -941,7 +914,10 @@ PYBIND11_MODULE(_pkmws, mod) {
       })
       .def_property_readonly("has_criteria", [](const PyMechanism& m) { return m.file->criteria.any(); })
       .def_property_readonly("has_bodies", [](const PyMechanism& m) { return m.file->bodies != nullptr; })
-      .def_property_readonly("document", [](const PyMechanism& m) { return json_to_py(m.file->document); })
+      .def_property_readonly("document",
+                             [](const PyMechanism& m) {
+                               return py::module_::import("json").attr("loads")(io::document_text(*m.file));
+                             })
       .def("_get", &get_parameter, py::arg("path"))
       .def("_parameters",
            [](const PyMechanism& m) {

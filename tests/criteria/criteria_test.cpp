@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 
+#include "pkmws/core/error.hpp"
 #include "pkmws/criteria/fields.hpp"
 #include "mechanisms/five_bar/criteria.hpp"
 #include "mechanisms/three_rpr/criteria.hpp"
@@ -230,18 +231,17 @@ TEST(CriteriaFields, JetsMatchFiniteDifferencesAndIntervalsEnclose) {
 
 TEST(CriteriaFields, FileCriteriaAndErrors) {
   EXPECT_THROW(criteria::three_rpr_reaction(paminsa(0.0), Load{1, 1}, 3), std::invalid_argument);
-  io::MechanismFile f;
+  mechanisms::Design f;  // the criteria need no file: a design
   f.path = "x.json";
-  f.mechanism = "five_bar";
   f.model = std::make_shared<mechanisms::FiveBar>(dextar(1, 1));
-  EXPECT_THROW(criteria::fields_for(f, "velocity"), io::InputError);
-  EXPECT_THROW(criteria::fields_for(f, "reaction"), io::InputError);  // no load
+  EXPECT_THROW(criteria::fields_for(f, "velocity"), InputError);
+  EXPECT_THROW(criteria::fields_for(f, "reaction"), InputError);  // no load
   EXPECT_EQ(criteria::fields_for(f, "pressure_angle").size(), 1u);
   // A velocity-ratio limit is read, but the five-bar has no such level set.
   f.criteria.max_velocity_ratio = 2.0;
   ASSERT_EQ(criteria::file_limits(f).size(), 1u);
   EXPECT_EQ(criteria::file_limits(f).front().name, "velocity_ratio");
-  EXPECT_THROW(criteria::fields_for(f, "velocity_ratio"), io::InputError);
+  EXPECT_THROW(criteria::fields_for(f, "velocity_ratio"), InputError);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/document.hpp"
 #include "io/registry.hpp"
 #include "pkmws/bodies/bodies.hpp"
 #include "pkmws/criteria/fields.hpp"

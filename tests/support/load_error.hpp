@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/document.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 
 namespace pkmws::test {

@@ -1,5 +1,6 @@
 // Criterion fields (see criteria/fields.hpp; derivations in docs/theory/level_sets.md).
 #include "pkmws/criteria/fields.hpp"
+#include "pkmws/core/error.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,20 +9,20 @@
 
 namespace pkmws::criteria {
 
-std::vector<CriterionField> fields_for(const io::MechanismFile& file, const std::string& name) {
+std::vector<CriterionField> fields_for(const mechanisms::Design& file, const std::string& name) {
   if (name != "pressure_angle" && name != "reaction" && name != "velocity_ratio") {
-    throw io::InputError("unknown criterion \"" + name + "\" (expected pressure_angle, reaction or velocity_ratio)");
+    throw InputError("unknown criterion \"" + name + "\" (expected pressure_angle, reaction or velocity_ratio)");
   }
   const auto capability = file.model->capability<CriterionFields>();
-  if (!capability) throw io::InputError(file.path + ": certified level sets: " + capability.reason());
+  if (!capability) throw InputError(file.path + ": certified level sets: " + capability.reason());
   try {
     return capability->fields(name, file.criteria, file.reaction_legs);
   } catch (const std::invalid_argument& e) {
-    throw io::InputError(file.path + ": " + e.what());
+    throw InputError(file.path + ": " + e.what());
   }
 }
 
-std::vector<Limit> file_limits(const io::MechanismFile& file) {
+std::vector<Limit> file_limits(const mechanisms::Design& file) {
   std::vector<Limit> out;
   const auto& c = file.criteria;
   if (c.max_pressure_angle_deg) out.push_back({"pressure_angle", *c.max_pressure_angle_deg});
@@ -67,7 +68,7 @@ class LimitedMechanism final : public mechanisms::Mechanism {
 
 }  // namespace
 
-std::shared_ptr<const mechanisms::Mechanism> limited_mechanism(const io::MechanismFile& file) {
+std::shared_ptr<const mechanisms::Mechanism> limited_mechanism(const mechanisms::Design& file) {
   std::vector<std::pair<CriterionField, double>> fields;
   for (const Limit& l : file_limits(file)) {
     for (CriterionField& f : fields_for(file, l.name)) {
@@ -78,9 +79,9 @@ std::shared_ptr<const mechanisms::Mechanism> limited_mechanism(const io::Mechani
   return std::make_shared<LimitedMechanism>(file.model, std::move(fields));
 }
 
-geometry::Region criteria_domain(const io::MechanismFile& file) { return file.model->workspace(); }
+geometry::Region criteria_domain(const mechanisms::Design& file) { return file.model->workspace(); }
 
-LimitedWorkspace limited_workspace(const io::MechanismFile& file, const std::vector<Limit>& limits,
+LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::vector<Limit>& limits,
                                    const certified::LevelSetOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   LimitedWorkspace out;

@@ -17,6 +17,7 @@
 #include "detail/parallel.hpp"
 #include "io/json_reader.hpp"
 #include "pkmws/bodies/bodies.hpp"
+#include "io/document.hpp"
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/geometry/inscribed.hpp"
 #include "pkmws/geometry/inscribed_rectangle.hpp"

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "io/document.hpp"
 #include "io/text.hpp"
 #include "pkmws/certified/cell_region.hpp"
 #include "pkmws/geometry/inscribed.hpp"
@@ -805,17 +806,18 @@ std::string interval_text(double lo, double hi, int min_digits) {
 }
 
 std::string source_citation(const MechanismFile& file) {
-  if (!file.source.is_object()) return "";
+  const nlohmann::json source = source_json(file);
+  if (!source.is_object()) return "";
   std::string out;
-  if (file.source.contains("paper") && file.source["paper"].is_string()) {
-    const std::string paper = file.source["paper"].get<std::string>();
+  if (source.contains("paper") && source["paper"].is_string()) {
+    const std::string paper = source["paper"].get<std::string>();
     std::smatch m;
     if (std::regex_search(paper, m, std::regex(R"(\[[A-Z][A-Za-z]+\])"))) out = m.str();
   }
   if (out.empty()) return "";
   for (const char* key : {"figure", "table"}) {
-    if (!file.source.contains(key) || !file.source[key].is_string()) continue;
-    std::string where = file.source[key].get<std::string>();
+    if (!source.contains(key) || !source[key].is_string()) continue;
+    std::string where = source[key].get<std::string>();
     const auto cut = where.find(" (");
     if (cut != std::string::npos) where.resize(cut);
     const auto comma = where.find(", ");

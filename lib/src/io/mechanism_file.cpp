@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include "io/document.hpp"
 #include "io/load_bodies.hpp"
 #include "io/registry.hpp"
 
@@ -79,7 +80,7 @@ MechanismFile parse_mechanism(const nlohmann::json& document, const std::string&
   doc.declare_fields(top_level_fields(document));
   MechanismFile file;
   file.path = origin;
-  file.document = document;
+  file.document = std::make_shared<const Document>(Document{document});
   file.name = doc.string("name");
   std::vector<std::string> names;
   for (const auto& k : kinds()) names.push_back(k.keyword);
@@ -89,7 +90,7 @@ MechanismFile parse_mechanism(const nlohmann::json& document, const std::string&
   if (doc.has("source")) {
     const auto& s = doc.raw("source");
     if (!s.is_object() && !s.is_string()) doc.fail("source", "expected an object or a string");
-    file.source = s;
+    file.source = s.dump();
   }
   file.criteria = read_criteria(doc, file.reaction_legs);
   file.model = find_kind(file.mechanism)->load(doc);
@@ -102,6 +103,31 @@ MechanismFile parse_mechanism(const nlohmann::json& document, const std::string&
   }
   doc.finish();
   return file;
+}
+
+MechanismFile parse_mechanism_text(std::string_view json_text, const std::string& origin) {
+  nlohmann::json document;
+  try {
+    document = detail::parse_json_text(std::string(json_text));
+  } catch (const InputError& e) {
+    throw InputError(origin + ": " + e.what());
+  }
+  try {
+    return parse_mechanism(document, origin);
+  } catch (const InputError& e) {
+    throw InputError(origin + ": " + e.what());
+  }
+}
+
+const nlohmann::json& document_json(const MechanismFile& file) {
+  static const nlohmann::json none;
+  return file.document ? file.document->json : none;
+}
+
+std::string document_text(const MechanismFile& file) { return document_json(file).dump(); }
+
+nlohmann::json source_json(const MechanismFile& file) {
+  return file.source.empty() ? nlohmann::json() : nlohmann::json::parse(file.source);
 }
 
 MechanismFile load_mechanism(const std::filesystem::path& path) {

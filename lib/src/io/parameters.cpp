@@ -1,6 +1,8 @@
 // The parameter model (pkmws/io/parameters.hpp).
 #include "pkmws/io/parameters.hpp"
 
+#include "io/document.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -117,30 +119,45 @@ void collect(const json& node, const std::string& path, const std::string& key, 
 
 std::vector<Parameter> parameters(const MechanismFile& file) {
   std::vector<Parameter> out;
-  collect(file.document, "", "", file.units, out);
+  collect(document_json(file), "", "", file.units, out);
   return out;
 }
 
 double parameter(const MechanismFile& file, const std::string& path) {
-  const json& node = field_at(file.document, path, file.path, "is not a field of the file");
+  const json& node = field_at(document_json(file), path, file.path, "is not a field of the file");
   if (!node.is_number()) throw InputError(file.path + ": '" + path + "' is not a number of the file");
   return node.get<double>();
 }
 
-MechanismFile with_parameter(const MechanismFile& file, const std::string& path, double value) {
-  json doc = file.document;
-  json& node = field_at(doc, path, file.path, "is not a field of the file");
-  if (!node.is_number()) throw InputError(file.path + ": '" + path + "' is not a number of the file");
-  if (node.is_number_integer() && value == std::floor(value) && std::abs(value) < 9.0e15) {
-    node = static_cast<long long>(value);
-  } else {
-    node = value;
+Parameter parameter_info(const MechanismFile& file, const std::string& path) {
+  (void)parameter(file, path);  // its errors: not a field path, not a number
+  for (Parameter& p : parameters(file)) {
+    if (p.path == path) return p;
+  }
+  throw InputError(file.path + ": '" + path + "' is not a parameter of the file (e.g. a number in `source`)");
+}
+
+MechanismFile with_parameters(const MechanismFile& file, const std::vector<std::pair<std::string, double>>& values) {
+  json doc = document_json(file);
+  for (const auto& [path, value] : values) {
+    json& node = field_at(doc, path, file.path, "is not a field of the file");
+    if (!node.is_number()) throw InputError(file.path + ": '" + path + "' is not a number of the file");
+    if (!std::isfinite(value)) throw InputError(file.path + ": '" + path + "': must be a finite number");
+    if (node.is_number_integer() && value == std::floor(value) && std::abs(value) < 9.0e15) {
+      node = static_cast<long long>(value);
+    } else {
+      node = value;
+    }
   }
   try {
     return parse_mechanism(doc, file.path);
   } catch (const InputError& e) {
     throw InputError(file.path + ": " + e.what());
   }
+}
+
+MechanismFile with_parameter(const MechanismFile& file, const std::string& path, double value) {
+  return with_parameters(file, {{path, value}});
 }
 
 }  // namespace pkmws::io

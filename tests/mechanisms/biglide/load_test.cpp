@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "io/document.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "mechanisms/biglide/biglide.hpp"
 #include "support/fixtures.hpp"

@@ -51,7 +51,7 @@ TEST(FiveBarKinematics, DexTARDatasetsCarryTheirWorkingModes) {
     EXPECT_EQ(m.legs()[1].working_mode, s2);
     EXPECT_EQ(m.legs()[0].proximal, L);
     EXPECT_EQ(m.legs()[1].base.x, A);
-    EXPECT_NE(f.source.dump().find("[Briot]"), std::string::npos);
+    EXPECT_NE(f.source.find("[Briot]"), std::string::npos);
     // The file's working mode comes first and is the valid one.
     const auto sol = m.inverse({0.05, 0.2, 0.0});
     ASSERT_EQ(sol.size(), 4u);

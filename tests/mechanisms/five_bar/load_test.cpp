@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/document.hpp"
 #include "support/load_error.hpp"
 
 #include "pkmws/geometry/primitives.hpp"

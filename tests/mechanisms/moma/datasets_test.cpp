@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "io/document.hpp"
 #include "pkmws/geometry/primitives.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "mechanisms/moma/moma.hpp"
@@ -45,8 +46,8 @@ TEST(MomaDatasets, ThirtyThreeConfigurationsOfTheProgramOfBuilding) {
     EXPECT_EQ(mech.mechanism, "moma");
     EXPECT_EQ(mech.units, "mm");
     EXPECT_FALSE(mech.description.empty()) << stem;
-    ASSERT_TRUE(mech.source.is_object()) << stem;
-    for (const char* key : {"paper", "figure", "note"}) EXPECT_TRUE(mech.source.contains(key)) << stem << " " << key;
+    ASSERT_TRUE(io::source_json(mech).is_object()) << stem;
+    for (const char* key : {"paper", "figure", "note"}) EXPECT_TRUE(io::source_json(mech).contains(key)) << stem << " " << key;
     // Rod length from the name, stroke [0, 200] ([Vasilic] §4.1: h_max = 200).
     const double l = std::stod(stem.substr(stem.rfind("_l") + 2));
     EXPECT_TRUE(l == 180 || l == 195 || l == 250) << stem;
@@ -91,7 +92,7 @@ TEST(MomaDatasets, ThirtyThreeConfigurationsOfTheProgramOfBuilding) {
       EXPECT_DOUBLE_EQ(L[1].guide_angle, pi / 2);
       EXPECT_EQ(L[0].branch, 1);
       EXPECT_EQ(L[1].branch, 1);
-      EXPECT_NE(mech.source["note"].get<std::string>().find("quadrant III"), std::string::npos);
+      EXPECT_NE(io::source_json(mech)["note"].get<std::string>().find("quadrant III"), std::string::npos);
     }
     if (stem.rfind("moma_m2_", 0) != 0 && stem.rfind("moma_m3_", 0) != 0) {
       EXPECT_EQ(L[0].reference, (Point{-100, 0})) << stem;
@@ -114,12 +115,12 @@ TEST(MomaDatasets, ThePapersReferenceConfigurationsNameTheirFigure) {
       {"moma_m4_gm5_gp5_l195", "Fig. 10 "}, {"moma_m5_gp5_gm5_l195", "Fig. 11 "}};
   for (const auto& [stem, figure] : cases) {
     const auto mech = io::load_mechanism(dataset(stem));
-    EXPECT_EQ(mech.source["figure"].get<std::string>().rfind(figure, 0), 0u) << stem;
+    EXPECT_EQ(io::source_json(mech)["figure"].get<std::string>().rfind(figure, 0), 0u) << stem;
   }
   // No other file claims one of those figures.
   for (const auto& f : moma_datasets()) {
     const auto mech = io::load_mechanism(f);
-    const std::string fig = mech.source["figure"].get<std::string>();
+    const std::string fig = io::source_json(mech)["figure"].get<std::string>();
     const bool reference = std::any_of(std::begin(cases), std::end(cases),
                                        [&](const auto& c) { return f.stem().string() == c.first; });
     if (!reference) {

@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/document.hpp"
 #include "pkmws/geometry/primitives.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "mechanisms/moma/moma.hpp"

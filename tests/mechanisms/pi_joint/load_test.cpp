@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "io/document.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "pkmws/io/plot.hpp"
 #include "mechanisms/pi_joint/charts.hpp"

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "pkmws/certified/level_set.hpp"
-#include "pkmws/io/mechanism_file.hpp"
+#include "pkmws/mechanisms/mechanism.hpp"
 
 namespace pkmws::criteria {
 
@@ -66,12 +66,12 @@ struct CriterionFields {
                                              const std::vector<int>& reaction_legs) const = 0;
 };
 
-/// The fields of a criterion for a mechanism file, one per limited leg (their
+/// The fields of a criterion for a design (a mechanism file is one), one per limited leg (their
 /// sub-level sets are intersected; for the 3-RPR also the assembly mode of the
 /// workspace's centre). `name`: "pressure_angle", "reaction" or (biglide)
 /// "velocity_ratio".
-/// Throws io::InputError when the mechanism does not support it.
-std::vector<CriterionField> fields_for(const io::MechanismFile& file, const std::string& name);
+/// Throws InputError (pkmws/core/error.hpp) when the mechanism does not support it.
+std::vector<CriterionField> fields_for(const mechanisms::Design& file, const std::string& name);
 
 /// One limit of the file's `criteria`: a criterion and its threshold.
 struct Limit {
@@ -79,8 +79,8 @@ struct Limit {
   double threshold = 0.0;
 };
 /// The limits in the file (max_pressure_angle_deg, max_reaction_N; throws
-/// io::InputError for max_velocity_ratio where unsupported).
-std::vector<Limit> file_limits(const io::MechanismFile& file);
+/// InputError (pkmws/core/error.hpp) for max_velocity_ratio where unsupported).
+std::vector<Limit> file_limits(const mechanisms::Design& file);
 
 /// Result of a criteria-limited workspace: W ∩ ⋂ {c_k <= t_k}.
 struct LimitedWorkspace {
@@ -93,16 +93,16 @@ struct LimitedWorkspace {
 };
 /// The workspace of `file` limited by `limits` (same surrogate: the stricter
 /// level; several surrogates: one certified intersection of sub-level sets).
-LimitedWorkspace limited_workspace(const io::MechanismFile& file, const std::vector<Limit>& limits,
+LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::vector<Limit>& limits,
                                    const certified::LevelSetOptions& options);
 
 /// The grid samplers' view of a criteria-limited workspace: the file's
 /// mechanism whose reachable() also asks every criterion surrogate to be within
 /// its level (the same fields and levels as limited_workspace). Everything else
 /// is delegated; workspace() throws (that region is certified, not exact).
-std::shared_ptr<const mechanisms::Mechanism> limited_mechanism(const io::MechanismFile& file);
+std::shared_ptr<const mechanisms::Mechanism> limited_mechanism(const mechanisms::Design& file);
 
 /// The exact workspace the criteria are restricted to (Mechanism::workspace()).
-geometry::Region criteria_domain(const io::MechanismFile& file);
+geometry::Region criteria_domain(const mechanisms::Design& file);
 
 }  // namespace pkmws::criteria

@@ -4,12 +4,11 @@
 
 #include <filesystem>
 #include <memory>
-#include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "pkmws/core/error.hpp"
 #include "pkmws/mechanisms/mechanism.hpp"
 
 namespace pkmws::bodies {
@@ -18,31 +17,30 @@ class BodyRig;  // pkmws/bodies/bodies.hpp
 
 namespace pkmws::io {
 
-/// Bad input: the message is one line naming the problem (and the field path).
-class InputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using InputError = pkmws::InputError;  // pkmws/core/error.hpp
 
-struct MechanismFile {
-  std::string path;
+/// The validated JSON document of a file (private: lib/src/io/document.hpp);
+/// nlohmann-json stays out of the public headers.
+struct Document;
+
+/// A parsed mechanism file: the design it states (path, model, criteria,
+/// reaction legs: mechanisms::Design) and what else the file holds.
+struct MechanismFile : mechanisms::Design {
   std::string name;
   std::string mechanism;        // the file's `mechanism` keyword
   std::string units;            // "mm" or "m"
   std::string description;
-  nlohmann::json source;        // paper, figure, notes (free-form object), null if absent
-  mechanisms::Criteria criteria;
-  /// criteria.reaction_legs: the legs (1-based) whose R_i,max is limited by
-  /// max_reaction_N ([Briot] figs. 12-13 limit the joint B_1 only); empty: every leg.
-  std::vector<int> reaction_legs;
-  nlohmann::json document;      // the validated document as read
-  std::shared_ptr<const mechanisms::Mechanism> model;
+  std::string source;           // `source` (paper, figure, notes) as JSON text, "" if absent
+  std::shared_ptr<const Document> document;  // the validated document as read (document_text)
   /// The optional `bodies` (docs/format.md (bodies); moma and five_bar), null when absent.
   std::shared_ptr<const bodies::BodyRig> bodies;
 };
 
 /// Parse and validate; throws InputError with the field's path on any problem.
 MechanismFile load_mechanism(const std::filesystem::path& path);
-MechanismFile parse_mechanism(const nlohmann::json& document, const std::string& origin);
+/// Parse and validate a document given as JSON text; `origin` names it in messages.
+MechanismFile parse_mechanism_text(std::string_view json_text, const std::string& origin);
+/// The file's validated document as JSON text (compact; what `pkmws info --json` prints).
+std::string document_text(const MechanismFile& file);
 
 }  // namespace pkmws::io

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pkmws/io/mechanism_file.hpp"
@@ -30,17 +31,15 @@ std::vector<Parameter> parameters(const MechanismFile& file);
 /// The number at `path`; throws InputError "<file>: '<path>' is not a field
 /// path like legs[1].rod_length" or "... is not a number of the file".
 double parameter(const MechanismFile& file, const std::string& path);
+/// The number at `path` with its type and unit (the same errors as parameter()).
+Parameter parameter_info(const MechanismFile& file, const std::string& path);
 
 /// The file with the number at `path` set to `value`, loaded anew (the
 /// loader's validation and messages). The path must exist in the file.
 MechanismFile with_parameter(const MechanismFile& file, const std::string& path, double value);
-
-/// The JSON node at a field path of a document; throws InputError
-/// "<where>: '<path>' is not a field path like legs[1].rod_length" or
-/// "<where>: '<path>' <missing>" when the document has no such node.
-nlohmann::json& field_at(nlohmann::json& document, const std::string& path, const std::string& where,
-                         const std::string& missing = "is not in the file");
-const nlohmann::json& field_at(const nlohmann::json& document, const std::string& path, const std::string& where,
-                               const std::string& missing = "is not in the file");
+/// The file with several numbers set at once (then loaded anew, once: a
+/// combination may be valid where one change alone is not). Non-finite values
+/// are refused: "<file>: '<path>': must be a finite number".
+MechanismFile with_parameters(const MechanismFile& file, const std::vector<std::pair<std::string, double>>& values);
 
 }  // namespace pkmws::io

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <typeindex>
 #include <span>
@@ -157,6 +158,18 @@ class Mechanism {
   /// The hook behind capability<C>(): an Offer for the capability type `which`
   /// (Offer::of / Offer::owned / Offer::refuse). Default: none.
   virtual Offer provide(std::type_index which) const;
+};
+
+/// One design as the analyses see it: a mechanism with the criteria limits
+/// stated for it, without the file format (io::MechanismFile is one, read
+/// from a file).
+struct Design {
+  std::string path;  // where it came from (a file path or an origin): errors name it
+  std::shared_ptr<const Mechanism> model;
+  Criteria criteria;
+  /// criteria.reaction_legs: the legs (1-based) whose R_i,max is limited by
+  /// max_reaction_N ([Briot] figs. 12-13 limit the joint B_1 only); empty: every leg.
+  std::vector<int> reaction_legs;
 };
 
 }  // namespace pkmws::mechanisms
