@@ -627,8 +627,13 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
         inside_all.push_back(b);
         straddle_inside.push_back(b);
       } else {
-        // Small and across W's boundary: split against W alone (cheap test).
-        split_within(within_test, b, 8, inside_all, undecided_all, in_lower, undecided_in);
+        // Small and across W's boundary: its area bounds from a split against
+        // W alone (cheap test); the regions take the whole box, clipped to W
+        // exactly below (the split's hundreds of boxes along W's boundary
+        // would only make the Boolean operations slow).
+        std::vector<Box> in_parts, undecided_parts;
+        split_within(within_test, b, 8, in_parts, undecided_parts, in_lower, undecided_in);
+        inside_all.push_back(b);
       }
     }
     for (const Box& b : r.undecided) {
