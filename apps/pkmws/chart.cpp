@@ -103,12 +103,13 @@ std::string cell(double v, double half) {
   if (!(half > 0.0)) return num(v);
   // Values of 100 and more print as integers with the half-width rounded up so that the printed
   // v ± h still encloses the bounds; smaller ones with two significant digits of h.
+  const std::string value = num(v);
   if (std::abs(v) >= 100.0) {
     std::snprintf(buf, sizeof buf, "%.0f", std::ceil(half + 0.5));  // + the rounding of v
-    return num(v) + " \u00b1 " + buf;
+  } else {
+    std::snprintf(buf, sizeof buf, "%.2g", half);
   }
-  std::snprintf(buf, sizeof buf, "%.2g", half);
-  return num(v) + " \u00b1 " + buf;
+  return value + " \u00b1 " + buf;
 }
 
 }  // namespace
