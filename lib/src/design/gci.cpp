@@ -10,7 +10,9 @@
 #include "pkmws/design/gci.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <vector>
@@ -94,6 +96,36 @@ GciResult global_conditioning_index(const mechanisms::Mechanism& mechanism,
   std::vector<Curve> curves;
   for (const auto& loop : region.loops()) curves.insert(curves.end(), loop.curves.begin(), loop.curves.end());
   const double reach = 0.5 * std::sqrt(2.0) * h * (1.0 + 1e-9) + 1e-12 * std::max(bb.width(), bb.height());
+  // A curve within `reach` of a cell centre of row j has a point in the row's
+  // band widened by `reach`: each row tests only those (boxes of arcs: their circle's).
+  std::vector<std::array<double, 2>> y_extent;
+  for (const Curve& c : curves) {
+    if (c.kind == Curve::Kind::segment) {
+      y_extent.push_back({std::min(c.source.y, c.target.y), std::max(c.source.y, c.target.y)});
+    } else {
+      y_extent.push_back({c.center.y - c.radius, c.center.y + c.radius});
+    }
+  }
+
+  // The region cut into row strips by halving (about log2(ny) Booleans of the
+  // whole region's size instead of one per row: staircase boundaries of
+  // certified regions have thousands of curves).
+  std::vector<geometry::Region> strips(static_cast<std::size_t>(ny));
+  const auto rows_box = [&](int lo, int hi) {
+    return geometry::rectangle({{origin.x - h, origin.y + lo * h}, {origin.x + (nx + 1) * h, origin.y + hi * h}});
+  };
+  const std::function<void(const geometry::Region&, int, int)> split = [&](const geometry::Region& part, int lo,
+                                                                          int hi) {
+    if (part.empty()) return;
+    if (hi - lo == 1) {
+      strips[static_cast<std::size_t>(lo)] = part;
+      return;
+    }
+    const int mid = (lo + hi) / 2;
+    split(part.intersect(rows_box(lo, mid)), lo, mid);
+    split(part.intersect(rows_box(mid, hi)), mid, hi);
+  };
+  split(region, 0, ny);
 
   std::vector<Piece> pieces(static_cast<std::size_t>(nx) * ny);
   std::vector<std::size_t> inside_count(ny, 0), boundary_count(ny, 0);
@@ -103,20 +135,23 @@ GciResult global_conditioning_index(const mechanisms::Mechanism& mechanism,
   detail::for_each_block(policy, static_cast<std::size_t>(ny), static_cast<std::size_t>(ny), [&](std::size_t row) {
     const int j = static_cast<int>(row);
     const double y0 = origin.y + j * h, y1 = y0 + h;
-    geometry::Region strip;  // region ∩ the row, built when a cell of the row needs it
-    bool strip_built = false;
+    const geometry::Region& strip = strips[row];  // region ∩ the row
     std::optional<bool> run_inside;  // status of the current run of boundary-free cells
+    std::vector<const Curve*> near;
+    for (std::size_t k = 0; k < curves.size(); ++k) {
+      if (y_extent[k][1] >= y0 - reach && y_extent[k][0] <= y1 + reach) near.push_back(&curves[k]);
+    }
     for (int i = 0; i < nx; ++i) {
       const double x0 = origin.x + i * h, x1 = x0 + h;
       const Point c{0.5 * (x0 + x1), 0.5 * (y0 + y1)};
       double d = std::numeric_limits<double>::infinity();
-      for (const Curve& curve : curves) {
-        d = std::min(d, distance_to(curve, c));
+      for (const Curve* curve : near) {
+        d = std::min(d, distance_to(*curve, c));
         if (d <= reach) break;
       }
       Piece& piece = pieces[static_cast<std::size_t>(j) * nx + i];
       if (d > reach) {
-        if (!run_inside) run_inside = region.contains(c);
+        if (!run_inside) run_inside = !strip.empty() && strip.contains(c);  // c is inside the row
         if (*run_inside) {
           piece.area = h * h;
           piece.centroid = c;
@@ -125,10 +160,6 @@ GciResult global_conditioning_index(const mechanisms::Mechanism& mechanism,
         continue;
       }
       run_inside.reset();
-      if (!strip_built) {
-        strip = region.intersect(geometry::rectangle({{origin.x, y0}, {origin.x + nx * h, y1}}));
-        strip_built = true;
-      }
       const geometry::Region clip = strip.intersect(geometry::rectangle({{x0, y0}, {x1, y1}}));
       double a = 0.0;
       Point m{0.0, 0.0};
