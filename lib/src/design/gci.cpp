@@ -134,7 +134,7 @@ GciResult global_conditioning_index(const mechanisms::Mechanism& mechanism,
   policy.serial_threshold = 8;
   detail::for_each_block(policy, static_cast<std::size_t>(ny), static_cast<std::size_t>(ny), [&](std::size_t row) {
     const int j = static_cast<int>(row);
-    const double y0 = origin.y + j * h, y1 = y0 + h;
+    const double y0 = origin.y + j * h, y1 = origin.y + (j + 1) * h;  // as rows_box: cells tile exactly
     const geometry::Region& strip = strips[row];  // region ∩ the row
     std::optional<bool> run_inside;  // status of the current run of boundary-free cells
     std::vector<const Curve*> near;
@@ -142,7 +142,7 @@ GciResult global_conditioning_index(const mechanisms::Mechanism& mechanism,
       if (y_extent[k][1] >= y0 - reach && y_extent[k][0] <= y1 + reach) near.push_back(&curves[k]);
     }
     for (int i = 0; i < nx; ++i) {
-      const double x0 = origin.x + i * h, x1 = x0 + h;
+      const double x0 = origin.x + i * h, x1 = origin.x + (i + 1) * h;
       const Point c{0.5 * (x0 + x1), 0.5 * (y0 + y1)};
       double d = std::numeric_limits<double>::infinity();
       for (const Curve* curve : near) {
@@ -153,7 +153,7 @@ GciResult global_conditioning_index(const mechanisms::Mechanism& mechanism,
       if (d > reach) {
         if (!run_inside) run_inside = !strip.empty() && strip.contains(c);  // c is inside the row
         if (*run_inside) {
-          piece.area = h * h;
+          piece.area = (x1 - x0) * (y1 - y0);
           piece.centroid = c;
           ++inside_count[row];
         }
@@ -178,7 +178,7 @@ GciResult global_conditioning_index(const mechanisms::Mechanism& mechanism,
       if (piece.area > 0.0) {
         piece.f = inverse_condition(mechanism, piece.centroid);
         // A clipped piece's centroid can lie outside it: the cell's centre next.
-        if (!piece.f) piece.f = inverse_condition(mechanism, {origin.x + (i + 0.5) * h, y0 + 0.5 * h});
+        if (!piece.f) piece.f = inverse_condition(mechanism, {origin.x + (i + 0.5) * h, 0.5 * (y0 + y1)});
       }
     }
   });
