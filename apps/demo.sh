@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # make demo: exact workspaces of every bundled mechanism, their figures and a
 # summary table in out/ (summary.md, summary.json, one SVG per dataset), a
-# design sweep (CSV/JSON) and an atlas figure.
+# design sweep (CSV/JSON), an atlas figure and the MOMA program of building
+# (apps/program_of_building.sh).
 set -euo pipefail
 pkmws=${1:-build/bin/pkmws}
 out=${2:-out}
@@ -23,5 +24,7 @@ echo "Design space: MOMA M1 over rod length x guide angle (table) and rod length
 "$pkmws" atlas "$out/sweep_moma_m1_atlas.csv" --x rod_length --y stroke --metric rectangle_area \
   --x-label "rod length l (mm)" --y-label "stroke h (mm)" --metric-label "rectangle area (mm²)" \
   --title "MOMA M1: largest inscribed rectangle (guides at x = ∓100 mm)" -o "$out/atlas_moma_m1.svg"
+echo
+bash apps/program_of_building.sh "$pkmws" "$out"
 echo
 echo "Figures and the summary table are in $out/ (open $out/summary.md)."

@@ -18,6 +18,13 @@ for phi in 0 25 50; do
     "$pkmws" export "datasets/three_rpr_paminsa_phi${phi}_r${r}.json" -f svg -o "$d/levels/paminsa_phi${phi}_r${r}.svg"
   done
 done
+# Comparing designs (docs/design_space.md): MOMA M1 at l = 250 mm against gamma = +5 deg at l = 195 mm.
+"$pkmws" diff datasets/moma_m1_g0_l250.json datasets/moma_m1_gp5_l195.json -o "$d/diff_moma_m1.svg" >/dev/null
+# The MOMA program of building (docs/design_space.md): the sweeps in a scratch directory, the figure here.
+tmp=$(mktemp -d)
+bash apps/program_of_building.sh "$pkmws" "$tmp" >/dev/null
+cp "$tmp/program_of_building.svg" "$d/program_of_building.svg"
+rm -rf "$tmp"
 # The README's Python example (needs the module: build/python).
 PYTHONPATH=build/python "${PYTHON:-/usr/bin/python3}" examples/python/readme_figure.py "$d/python_workspace.png" >/dev/null
 echo "figures written to $d"

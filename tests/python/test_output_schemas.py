@@ -14,7 +14,7 @@ from conftest import DATASETS, SOURCE_DIR, run
 
 SCHEMA_DIR = SOURCE_DIR / "docs" / "schema"
 COMMANDS = ["ik", "dk", "eval", "info", "area", "levels", "explain", "export", "plot", "grid", "compare", "batch",
-            "atlas"]
+            "atlas", "diff"]
 VALIDATORS = {c: jsonschema.Draft7Validator(json.loads((SCHEMA_DIR / f"{c}.output.schema.json").read_text()))
               for c in COMMANDS}
 BOUND = "1"  # --max-time for certified work: the shape is checked, not the precision
@@ -165,3 +165,16 @@ def test_batch_and_atlas_json(tmp_path):
     csv.write_text("index,status,a,b,area\n0,ok,1,1,1.0\n1,ok,2,1,2.0\n2,ok,1,2,3.0\n3,error,2,2,\n")
     a = valid("atlas", csv, "--x", "a", "--y", "b", "--metric", "area", "-o", tmp_path / "atlas.svg")
     assert a["cells_without_value"] == 1 and (tmp_path / "atlas.svg").exists()
+
+
+def test_diff_json(tmp_path):
+    data = SOURCE_DIR / "datasets"
+    j = valid("diff", data / "moma_m1_g0_l250.json", data / "moma_m1_gp5_l195.json", "--gci-cells", "16",
+              "-o", tmp_path / "diff.svg")
+    assert j["figure"] == str(tmp_path / "diff.svg") and (tmp_path / "diff.svg").exists()
+    # bodies (real area bounds), criteria (limited area bounds), no figure (figure_reason)
+    j = valid("diff", data / "machine_moma_m1.json", data / "moma_m1_g0_l250.json", "--gci-cells", "16")
+    assert j["figure"] is None and "b_reason" in [m for m in j["metrics"] if m["metric"] == "real_area"][0]
+    valid("diff", data / "five_bar_dextar_mm_alpha40.json", data / "five_bar_dextar_mm_alpha60.json",
+          "--gci-cells", "16")
+    refused("diff", data / "moma_m1_g0_l250.json", data / "five_bar_dextar_mm.json", says="units")

@@ -19,6 +19,7 @@
 #include "pkmws/bodies/bodies.hpp"
 #include "io/document.hpp"
 #include "pkmws/criteria/fields.hpp"
+#include "pkmws/design/gci.hpp"
 #include "pkmws/geometry/inscribed.hpp"
 #include "pkmws/geometry/inscribed_rectangle.hpp"
 #include "pkmws/io/export.hpp"
@@ -58,6 +59,7 @@ const std::vector<MetricInfo>& metric_table() {
       {"task_fit", {"task_inside", "task_margin", "task_area_outside"}},
       {"limited_area", {"limited_area_lower", "limited_area_upper"}},
       {"real_area", {"real_area_lower", "real_area_upper"}},
+      {"gci", {"gci", "gci_error"}},
   };
   return table;
 }
@@ -256,6 +258,10 @@ SweepSpec load_sweep(const std::filesystem::path& file) {
   if (wants_task && spec.task.empty()) r.fail("task", "is required by the metric task_fit");
   if (auto v = r.optional_positive("rectangle_precision")) spec.rectangle_precision = *v;
   if (auto v = r.optional_positive("criteria_tolerance")) spec.criteria_tolerance = *v;
+  if (r.has("gci_cells")) {
+    spec.gci_cells = r.integer("gci_cells");
+    if (spec.gci_cells < 2 || spec.gci_cells > 4096) r.fail("gci_cells", "must be 2 to 4096");
+  }
   if (r.has("interference_depth")) {
     spec.interference_depth = r.integer("interference_depth");
     if (spec.interference_depth < 0 || spec.interference_depth > 12) r.fail("interference_depth", "must be 0 to 12");
@@ -386,12 +392,23 @@ DesignRow evaluate_design(const SweepSpec& spec, std::size_t index) {
           row.metrics[col + 1] = real.real.area_upper;
         }
         col += 2;
+      } else if (m == "gci") {
+        GciOptions o;
+        o.cells = spec.gci_cells;
+        const GciResult g = global_conditioning_index(*file.model, enclosure, o);
+        if (g.value) {
+          row.metrics[col] = *g.value;
+          row.metrics[col + 1] = g.error;
+        } else {
+          row.reason = "gci: " + g.reason;  // status ok: the reason says why the column is empty
+        }
+        col += 2;
       }
     }
   } catch (const std::exception& e) {
     return finish("failed", e.what());
   }
-  return finish("ok", "");
+  return finish("ok", row.reason);
 }
 
 std::vector<DesignRow> run_sweep(const SweepSpec& spec, const std::vector<std::size_t>& indices, int threads,

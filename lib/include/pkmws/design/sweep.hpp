@@ -37,6 +37,7 @@ struct SweepSpec {
   double rectangle_precision = 1e-6;  // relative width of the inscribed rectangle
   double criteria_tolerance = 1e-6;   // relative width of certified limited areas
   int interference_depth = 7;         // quadtree depth of real workspaces
+  int gci_cells = 128;                // fine-grid cells across the workspace for "gci"
 };
 
 /// The metrics a sweep can compute, in column order.
