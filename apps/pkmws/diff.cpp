@@ -31,7 +31,7 @@ struct Side {
 // The metrics of one file, computed as a sweep computes them (one design, no parameters).
 void evaluate(Side& s, double rectangle_precision, double criteria_tolerance, int gci_cells) {
   s.spec.base_file = s.file.path;
-  s.spec.base_document = s.file.document.dump();
+  s.spec.base_document = io::document_text(s.file);
   s.spec.metrics = {"area", "components", "inscribed_circle", "inscribed_rectangle", "limited_area", "real_area",
                     "gci"};
   s.spec.rectangle_precision = rectangle_precision;
