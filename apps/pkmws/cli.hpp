@@ -40,6 +40,8 @@ void add_compare(CLI::App& app, std::vector<Command>& commands);  // exact vs gr
 void add_levels(CLI::App& app, std::vector<Command>& commands);   // criterion bands (levels.cpp)
 void add_sweep(CLI::App& app, std::vector<Command>& commands);    // design-space sweeps (sweep.cpp)
 void add_atlas(CLI::App& app, std::vector<Command>& commands);    // contour maps of sweeps (atlas.cpp)
+void add_optimize(CLI::App& app, std::vector<Command>& commands); // design synthesis (optimize.cpp)
+void add_feasible(CLI::App& app, std::vector<Command>& commands); // feasible boxes of a sweep (optimize.cpp)
 /// The bound of a certified computation (`--max-time SECONDS`) and its progress
 /// line: on stderr, when stderr is a terminal and the work has run for more
 /// than a second, rewritten in place and erased at the end.
