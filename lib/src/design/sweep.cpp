@@ -18,6 +18,7 @@
 #include "design/spec_reading.hpp"
 #include "io/json_reader.hpp"
 #include "pkmws/bodies/bodies.hpp"
+#include "pkmws/certified/cell_region.hpp"
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/geometry/inscribed.hpp"
 #include "pkmws/geometry/inscribed_rectangle.hpp"
@@ -382,19 +383,40 @@ DesignRow evaluate_design(const SweepSpec& spec, std::size_t index, const std::v
     const double min_area = inside.empty() ? 0.0 : io::effective_min_area(inside, {});
     const std::vector<geometry::Component> comps = inside.components(min_area);
     // The criteria-limited and the real workspace, computed once for the
-    // metrics that need them (their inner regions only for the task fits).
-    const auto wants = [&](const char* name) {
-      return std::find(spec.metrics.begin(), spec.metrics.end(), name) != spec.metrics.end();
-    };
+    // metrics that need them.
     std::optional<criteria::LimitedWorkspace> limited;
     const auto limited_ws = [&]() -> const criteria::LimitedWorkspace& {
       if (!limited) {
         certified::LevelSetOptions o;
         o.relative_tolerance = spec.criteria_tolerance;
-        o.build_regions = wants("task_fit_limited");
         limited = criteria::limited_workspace(file, criteria::file_limits(file), o);
       }
       return *limited;
+    };
+    // The inner enclosure of the limited workspace near the task: W's inside
+    // ∩ the certified-inside cells at least 1/64 of the task's size that meet
+    // the task's box widened by its size (the full enclosure, every cell as
+    // exact Boolean operations, takes minutes). Smaller cells and the cells
+    // traced across the level curve are left out: a smaller set than the full
+    // inner enclosure, still inside the true one.
+    std::optional<geometry::Region> limited_inner;
+    const auto limited_inner_near_task = [&]() -> const geometry::Region& {
+      if (!limited_inner) {
+        geometry::Box window;
+        for (const geometry::Point& p : spec.task) window.expand(p);
+        const double d = std::max(window.width(), window.height());
+        window.min = {window.min.x - d, window.min.y - d};
+        window.max = {window.max.x + d, window.max.y + d};
+        std::vector<geometry::Box> near;
+        for (const geometry::Box& b : limited_ws().detail.inside_boxes) {
+          if (b.width() >= d / 64 && b.max.x >= window.min.x && b.min.x <= window.max.x && b.max.y >= window.min.y &&
+              b.min.y <= window.max.y) {
+            near.push_back(b);
+          }
+        }
+        limited_inner = near.empty() ? geometry::Region() : inside.intersect(certified::boxes_region(near));
+      }
+      return *limited_inner;
     };
     std::optional<bodies::RealWorkspace> real;
     const auto real_ws = [&]() -> const bodies::RealWorkspace& {
@@ -456,8 +478,7 @@ DesignRow evaluate_design(const SweepSpec& spec, std::size_t index, const std::v
         // on it (limited), no part collides anywhere on it (real).
         const bool lim = m == "task_fit_limited";
         if (lim ? file.criteria.any() : file.bodies != nullptr) {
-          const geometry::Region& region = lim ? limited_ws().region.inner : real_ws().real.inner;
-          const auto f = geometry::fit(region, spec.task, 1e-9);
+          const auto f = geometry::fit(lim ? limited_inner_near_task() : real_ws().real.inner, spec.task, 1e-9);
           row.metrics[col] = f.inside ? 1.0 : 0.0;
           row.metrics[col + 1] = f.margin;
         }
