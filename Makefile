@@ -4,7 +4,8 @@
 DEB_PACKAGES := cmake g++ make ccache libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev \
                 libboost-dev libtbb-dev nlohmann-json3-dev libcli11-dev libgtest-dev \
                 libbenchmark-dev python3 python3-dev pybind11-dev python3-pytest python3-numpy python3-shapely \
-                python3-ezdxf python3-matplotlib python3-jsonschema librsvg2-bin libopenmpi-dev openmpi-bin
+                python3-ezdxf python3-matplotlib python3-jsonschema librsvg2-bin libopenmpi-dev openmpi-bin \
+                libnlopt-cxx-dev
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PKMWS := build/bin/pkmws
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)

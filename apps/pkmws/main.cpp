@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
   pkmws::cli::add_atlas(app, commands);
   pkmws::cli::add_diff(app, commands);
   pkmws::cli::add_chart(app, commands);
+  pkmws::cli::add_optimize(app, commands);
+  pkmws::cli::add_feasible(app, commands);
   pkmws::cli::strict_numeric_options(app);
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;

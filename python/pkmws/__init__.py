@@ -26,7 +26,7 @@ from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple
 from . import _pkmws
 from ._pkmws import Component, Curve, Loop, Mechanism, Region
 
-__all__ = ["load", "sweep", "metric_names", "Mechanism", "Region", "Component", "Loop", "Curve", "Parameters"]
+__all__ = ["load", "sweep", "optimize", "metric_names", "Mechanism", "Region", "Component", "Loop", "Curve", "Parameters"]
 __version__ = "0.1.0"
 
 
@@ -223,3 +223,68 @@ def sweep(base: Union[str, "_os.PathLike[str]", Mapping[str, Any], Mechanism, No
         except ValueError as e:
             # Name the sweep as the caller gave it, not the scratch file.
             raise ValueError(str(e).replace(spec_path, "<sweep>").replace(tmp + _os.sep, "")) from None
+
+
+def optimize(spec: Union[str, "_os.PathLike[str]", Mapping[str, Any]], *,
+             history: bool = False) -> Dict[str, Any]:
+    """Design synthesis, as ``pkmws optimize SPEC --json`` (docs/design_space.md).
+
+    ``spec`` is an optimisation file (a path; its ``base`` is relative to the
+    file) or its content as a dict (``base`` relative to the current
+    directory, or a dict / ``Mechanism`` of the base mechanism itself), e.g.
+    ``{"base": "m.json", "parameters": [{"name": "rod", "path":
+    ["legs[0].rod_length", "legs[1].rod_length"], "from": 150, "to": 300}],
+    "objective": {"minimize": "rod"}, "constraints": ["task_margin >= 5"],
+    "task": {"center": [0, -300], "size": [80, 40]}}``.
+
+    Returns the report as a dict (``status``, ``objective``, ``parameters``
+    with the optimum's ``value``, ``constraints`` with their ``margin``,
+    ``evaluations``, ``phases``, ``document``: the optimum's mechanism file);
+    with ``history=True`` also ``history``: every evaluation as a dict with the
+    sweep's columns. A bad spec raises ``ValueError`` with the command line's
+    one-line message; an infeasible problem is ``status == "infeasible"``.
+    """
+    with _tempfile.TemporaryDirectory(prefix="pkmws-optimize-") as tmp:
+        if isinstance(spec, Mapping):
+            doc = dict(spec)
+            base = doc.get("base")
+            if isinstance(base, Mechanism):
+                base = base.document
+            if isinstance(base, Mapping):
+                base_path = _os.path.join(tmp, "base.json")
+                with open(base_path, "w", encoding="utf-8") as f:
+                    _json.dump(base, f, allow_nan=False)
+                doc["base"] = base_path
+            try:
+                text = _json.dumps(doc, allow_nan=False)
+            except (TypeError, ValueError) as e:
+                raise ValueError(f"<dict>: not a JSON document ({e})") from None
+            directory, name = _os.getcwd(), "<dict>"
+        elif isinstance(spec, (str, bytes, _os.PathLike)):
+            name = _os.fsdecode(_os.fspath(spec))
+            try:
+                with open(name, encoding="utf-8") as f:
+                    text = f.read()
+            except OSError:
+                raise ValueError(f"{name}: cannot open the optimisation file") from None
+            directory = _os.path.dirname(_os.path.abspath(name))
+        else:
+            raise ValueError(f"optimize: expected a file path or a dict, got {type(spec).__name__}")
+        report, csv_text = _pkmws._optimize(text, directory, name)
+    result: Dict[str, Any] = _json.loads(report)
+    if history:
+        import csv as _csv
+        import io as _io
+        rows = []
+        for row in _csv.DictReader(_io.StringIO(csv_text)):
+            out: Dict[str, Any] = {}
+            for key, value in row.items():
+                if key in ("status", "reason"):
+                    out[key] = value
+                elif key == "index":
+                    out[key] = int(value)
+                else:
+                    out[key] = float(value) if value != "" else None
+            rows.append(out)
+        result["history"] = rows
+    return result

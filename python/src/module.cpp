@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "pkmws/criteria/fields.hpp"
+#include "pkmws/design/optimize.hpp"
 #include "pkmws/design/sweep.hpp"
 #include "pkmws/geometry/inscribed.hpp"
 #include "pkmws/geometry/inscribed_rectangle.hpp"
@@ -979,6 +980,18 @@ PYBIND11_MODULE(_pkmws, mod) {
   });
   mod.def("_run_sweep", &run_sweep, py::arg("spec_file"), py::arg("threads") = 0);
   mod.def("_metric_names", [] { return design::metric_names(); });
+  // Design synthesis: (the report of `pkmws optimize --json`, the history CSV).
+  mod.def("_optimize", [](const std::string& text, const std::string& dir, const std::string& name) {
+    const design::OptimizeSpec spec = design::parse_optimize(text, dir, name);
+    design::OptimizeResult r;
+    {
+      py::gil_scoped_release release;
+      r = design::optimize(spec);
+    }
+    std::string csv = design::csv_header(spec.sweep, true) + "\n";
+    for (const auto& row : r.history) csv += design::csv_line(row, true) + "\n";
+    return py::make_tuple(design::optimize_report(spec, r), csv);
+  });
   mod.def("_time_contains", &time_contains);
   mod.def("_time_inverse", &time_inverse);
   mod.def("_time_evaluate", &time_evaluate);

@@ -14,7 +14,7 @@ from conftest import DATASETS, SOURCE_DIR, run
 
 SCHEMA_DIR = SOURCE_DIR / "docs" / "schema"
 COMMANDS = ["ik", "dk", "eval", "info", "area", "levels", "explain", "export", "plot", "grid", "compare", "batch",
-            "atlas", "diff"]
+            "atlas", "diff", "optimize", "feasible"]
 VALIDATORS = {c: jsonschema.Draft7Validator(json.loads((SCHEMA_DIR / f"{c}.output.schema.json").read_text()))
               for c in COMMANDS}
 BOUND = "1"  # --max-time for certified work: the shape is checked, not the precision
@@ -178,3 +178,27 @@ def test_diff_json(tmp_path):
     valid("diff", data / "five_bar_dextar_mm_alpha40.json", data / "five_bar_dextar_mm_alpha60.json",
           "--gci-cells", "16")
     refused("diff", data / "moma_m1_g0_l250.json", data / "five_bar_dextar_mm.json", says="units")
+def test_optimize_and_feasible_json(tmp_path):
+    base = SOURCE_DIR / "datasets" / "moma_m1_g0_l250.json"
+    rods = ["legs[0].rod_length", "legs[1].rod_length"]
+    task = {"center": [0, -300], "size": [80, 40]}
+    spec = tmp_path / "optimize.json"
+    spec.write_text(json.dumps({"base": str(base), "parameters": [{"name": "rod", "path": rods, "from": 150, "to": 250}],
+                                "objective": {"minimize": "rod"}, "constraints": ["task_margin >= 5"], "task": task,
+                                "max_evaluations": 30}))
+    j = valid("optimize", spec)
+    assert j["feasible"] and j["metrics"]["task_margin"] >= 5
+    # No feasible design: null-free all the same (margins are negative numbers).
+    spec.write_text(spec.read_text().replace("task_margin >= 5", "task_margin >= 500"))
+    assert valid("optimize", spec)["status"] == "infeasible"
+    # Designs that are not ok everywhere: rods too short to meet, the report says why.
+    spec.write_text(json.dumps({"base": str(base), "parameters": [{"name": "rod", "path": rods, "from": 1, "to": 2}],
+                                "objective": {"maximize": "area"}, "max_evaluations": 5}))
+    j = valid("optimize", spec)
+    assert j["design"]["status"] == "empty" and j["objective"]["value"] is None and j["objective"]["value_reason"]
+    sweep = tmp_path / "sweep.json"
+    sweep.write_text(json.dumps({"base": str(base), "metrics": ["task_fit"], "task": task,
+                                 "parameters": [{"name": "rod", "path": rods, "from": 150, "to": 250, "steps": 3}]}))
+    run("sweep", sweep, "-o", tmp_path / "s.csv")
+    j = valid("feasible", tmp_path / "s.csv", "--where", "task_margin >= 5")
+    assert j["designs"] == 3 and len(j["boxes"]) == 1

@@ -15,9 +15,11 @@
 #include <nlohmann/json.hpp>
 
 #include "detail/parallel.hpp"
+#include "design/spec_reading.hpp"
 #include "io/json_reader.hpp"
 #include "pkmws/bodies/bodies.hpp"
 #include "io/document.hpp"
+#include "pkmws/certified/cell_region.hpp"
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/design/gci.hpp"
 #include "pkmws/geometry/inscribed.hpp"
@@ -60,6 +62,8 @@ const std::vector<MetricInfo>& metric_table() {
       {"limited_area", {"limited_area_lower", "limited_area_upper"}},
       {"real_area", {"real_area_lower", "real_area_upper"}},
       {"gci", {"gci", "gci_error"}},
+      {"task_fit_limited", {"limited_task_inside", "limited_task_margin"}},
+      {"task_fit_real", {"real_task_inside", "real_task_margin"}},
   };
   return table;
 }
@@ -139,19 +143,23 @@ const std::vector<std::string>& metric_names() {
   return names;
 }
 
-SweepSpec load_sweep(const std::filesystem::path& file) {
+namespace reading {
+
+json read_spec_file(const std::filesystem::path& file, const std::string& what) {
   std::ifstream in(file);
-  if (!in) throw InputError(file.string() + ": cannot open the sweep file");
+  if (!in) throw InputError(file.string() + ": cannot open the " + what + " file");
   json doc;
   try {
     doc = json::parse(in);
   } catch (const json::exception& e) {
     throw InputError(file.string() + ": not valid JSON (" + std::string(e.what()) + ")");
   }
-  if (!doc.is_object()) throw InputError(file.string() + ": a sweep file is a JSON object");
-  JsonReader r(doc, "");
-  SweepSpec spec;
-  spec.base_file = file.parent_path() / r.string("base");
+  if (!doc.is_object()) throw InputError(file.string() + ": a " + what + " file is a JSON object");
+  return doc;
+}
+
+json read_base(JsonReader& r, const std::filesystem::path& dir, SweepSpec& spec) {
+  spec.base_file = dir / r.string("base");
   {
     std::ifstream base(spec.base_file);
     if (!base) throw InputError(r.field("base") + ": cannot open " + spec.base_file.string());
@@ -160,8 +168,84 @@ SweepSpec load_sweep(const std::filesystem::path& file) {
     spec.base_document = ss.str();
   }
   // The base must load on its own: its errors are the file's, not a design's.
-  const io::MechanismFile base_file = io::load_mechanism(spec.base_file);
-  json base_doc = json::parse(spec.base_document);
+  (void)io::load_mechanism(spec.base_file);
+  return json::parse(spec.base_document);
+}
+
+void read_paths(JsonReader& p, json& base_doc, SweepParameter& sp) {
+  const json& paths = p.raw("path");
+  if (paths.is_string()) {
+    sp.paths.push_back(paths.get<std::string>());
+  } else if (paths.is_array() && !paths.empty() && std::all_of(paths.begin(), paths.end(), [](const json& v) {
+               return v.is_string();
+             })) {
+    for (const json& v : paths) sp.paths.push_back(v.get<std::string>());
+  } else {
+    p.fail("path", "must be a field path or a non-empty array of field paths (tied parameters)");
+  }
+  for (const std::string& path : sp.paths) set_path(base_doc, path, 0.0, p.field("path"));  // path exists
+  sp.name = p.has("name") ? p.string("name") : sp.paths.front();
+}
+
+void read_task(JsonReader& r, SweepSpec& spec) {
+  if (!r.has("task")) return;
+  JsonReader t = r.object("task");
+  if (t.has("polygon")) {
+    const json& poly = t.raw("polygon");
+    if (!poly.is_array() || poly.size() < 3) t.fail("polygon", "must list at least 3 points [x, y]");
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      const std::string where = t.field(io::detail::item("polygon", k));
+      if (!poly[k].is_array() || poly[k].size() != 2) throw InputError(where + ": must be a point [x, y]");
+      spec.task.push_back({JsonReader::as_number(poly[k][0], where), JsonReader::as_number(poly[k][1], where)});
+    }
+  } else {
+    const geometry::Point c = t.point("center");
+    const std::vector<double> size = t.numbers("size", 2);
+    if (!(size[0] > 0 && size[1] > 0)) t.fail("size", "must be positive");
+    spec.task = {{c.x - size[0] / 2, c.y - size[1] / 2},
+                 {c.x + size[0] / 2, c.y - size[1] / 2},
+                 {c.x + size[0] / 2, c.y + size[1] / 2},
+                 {c.x - size[0] / 2, c.y + size[1] / 2}};
+  }
+  t.finish();
+}
+
+void read_accuracy(JsonReader& r, SweepSpec& spec) {
+  if (auto v = r.optional_positive("rectangle_precision")) spec.rectangle_precision = *v;
+  if (auto v = r.optional_positive("criteria_tolerance")) spec.criteria_tolerance = *v;
+  if (r.has("interference_depth")) {
+    spec.interference_depth = r.integer("interference_depth");
+    if (spec.interference_depth < 0 || spec.interference_depth > 12) r.fail("interference_depth", "must be 0 to 12");
+  }
+  if (r.has("gci_cells")) {
+    spec.gci_cells = r.integer("gci_cells");
+    if (spec.gci_cells < 2 || spec.gci_cells > 4096) r.fail("gci_cells", "must be 2 to 4096");
+  }
+}
+
+}  // namespace reading
+
+std::string metric_of_column(const std::string& column) {
+  for (const MetricInfo& m : metric_table()) {
+    if (std::find(m.columns.begin(), m.columns.end(), column) != m.columns.end()) return m.name;
+  }
+  return "";
+}
+
+const std::vector<std::string>& all_metric_columns() {
+  static const std::vector<std::string> columns = [] {
+    std::vector<std::string> c;
+    for (const MetricInfo& m : metric_table()) c.insert(c.end(), m.columns.begin(), m.columns.end());
+    return c;
+  }();
+  return columns;
+}
+
+SweepSpec load_sweep(const std::filesystem::path& file) {
+  const json doc = reading::read_spec_file(file, "sweep");
+  JsonReader r(doc, "");
+  SweepSpec spec;
+  json base_doc = reading::read_base(r, file.parent_path(), spec);
 
   const std::string sampling = r.has("sampling") ? r.one_of("sampling", {"grid", "sobol"}) : "grid";
   spec.sampling = sampling == "grid" ? SweepSpec::Sampling::grid : SweepSpec::Sampling::sobol;
@@ -177,18 +261,7 @@ SweepSpec load_sweep(const std::filesystem::path& file) {
     if (!params[i].is_object()) throw InputError(where + ": must be an object");
     JsonReader p(params[i], where);
     SweepParameter sp;
-    const json& paths = p.raw("path");
-    if (paths.is_string()) {
-      sp.paths.push_back(paths.get<std::string>());
-    } else if (paths.is_array() && !paths.empty() && std::all_of(paths.begin(), paths.end(), [](const json& v) {
-                 return v.is_string();
-               })) {
-      for (const json& v : paths) sp.paths.push_back(v.get<std::string>());
-    } else {
-      p.fail("path", "must be a field path or a non-empty array of field paths (tied parameters)");
-    }
-    for (const std::string& path : sp.paths) set_path(base_doc, path, 0.0, p.field("path"));  // path exists
-    sp.name = p.has("name") ? p.string("name") : sp.paths.front();
+    reading::read_paths(p, base_doc, sp);
     if (spec.sampling == SweepSpec::Sampling::grid) {
       if (p.has("values")) {
         const json& v = p.raw("values");
@@ -233,40 +306,12 @@ SweepSpec load_sweep(const std::filesystem::path& file) {
   } else {
     spec.metrics = {"area", "components", "inscribed_circle", "inscribed_rectangle"};
   }
-  if (r.has("task")) {
-    JsonReader t = r.object("task");
-    if (t.has("polygon")) {
-      const json& poly = t.raw("polygon");
-      if (!poly.is_array() || poly.size() < 3) t.fail("polygon", "must list at least 3 points [x, y]");
-      for (std::size_t k = 0; k < poly.size(); ++k) {
-        const std::string where = t.field(io::detail::item("polygon", k));
-        if (!poly[k].is_array() || poly[k].size() != 2) throw InputError(where + ": must be a point [x, y]");
-        spec.task.push_back({JsonReader::as_number(poly[k][0], where), JsonReader::as_number(poly[k][1], where)});
-      }
-    } else {
-      const geometry::Point c = t.point("center");
-      const std::vector<double> size = t.numbers("size", 2);
-      if (!(size[0] > 0 && size[1] > 0)) t.fail("size", "must be positive");
-      spec.task = {{c.x - size[0] / 2, c.y - size[1] / 2},
-                   {c.x + size[0] / 2, c.y - size[1] / 2},
-                   {c.x + size[0] / 2, c.y + size[1] / 2},
-                   {c.x - size[0] / 2, c.y + size[1] / 2}};
-    }
-    t.finish();
+  reading::read_task(r, spec);
+  for (const char* m : {"task_fit", "task_fit_limited", "task_fit_real"}) {
+    const bool wants_task = std::find(spec.metrics.begin(), spec.metrics.end(), m) != spec.metrics.end();
+    if (wants_task && spec.task.empty()) r.fail("task", std::string("is required by the metric ") + m);
   }
-  const bool wants_task = std::find(spec.metrics.begin(), spec.metrics.end(), "task_fit") != spec.metrics.end();
-  if (wants_task && spec.task.empty()) r.fail("task", "is required by the metric task_fit");
-  if (auto v = r.optional_positive("rectangle_precision")) spec.rectangle_precision = *v;
-  if (auto v = r.optional_positive("criteria_tolerance")) spec.criteria_tolerance = *v;
-  if (r.has("gci_cells")) {
-    spec.gci_cells = r.integer("gci_cells");
-    if (spec.gci_cells < 2 || spec.gci_cells > 4096) r.fail("gci_cells", "must be 2 to 4096");
-  }
-  if (r.has("interference_depth")) {
-    spec.interference_depth = r.integer("interference_depth");
-    if (spec.interference_depth < 0 || spec.interference_depth > 12) r.fail("interference_depth", "must be 0 to 12");
-  }
-  (void)base_file;
+  reading::read_accuracy(r, spec);
   r.finish();
   return spec;
 }
@@ -312,10 +357,14 @@ std::vector<std::string> metric_columns(const SweepSpec& spec) {
 }
 
 DesignRow evaluate_design(const SweepSpec& spec, std::size_t index) {
+  return evaluate_design(spec, index, design_values(spec, index));
+}
+
+DesignRow evaluate_design(const SweepSpec& spec, std::size_t index, const std::vector<double>& values) {
   const auto start = std::chrono::steady_clock::now();
   DesignRow row;
   row.index = index;
-  row.values = design_values(spec, index);
+  row.values = values;
   row.metrics.assign(metric_columns(spec).size(), std::nullopt);
   const auto finish = [&](std::string status, std::string reason) {
     row.status = std::move(status);
@@ -340,6 +389,52 @@ DesignRow evaluate_design(const SweepSpec& spec, std::size_t index) {
     const geometry::Region& inside = enclosure.inner;
     const double min_area = inside.empty() ? 0.0 : io::effective_min_area(inside, {});
     const std::vector<geometry::Component> comps = inside.components(min_area);
+    // The criteria-limited and the real workspace, computed once for the
+    // metrics that need them.
+    std::optional<criteria::LimitedWorkspace> limited;
+    const auto limited_ws = [&]() -> const criteria::LimitedWorkspace& {
+      if (!limited) {
+        certified::LevelSetOptions o;
+        o.relative_tolerance = spec.criteria_tolerance;
+        limited = criteria::limited_workspace(file, criteria::file_limits(file), o);
+      }
+      return *limited;
+    };
+    // The inner enclosure of the limited workspace near the task: W's inside
+    // ∩ the certified-inside cells at least 1/64 of the task's size that meet
+    // the task's box widened by its size (the full enclosure, every cell as
+    // exact Boolean operations, takes minutes). Smaller cells and the cells
+    // traced across the level curve are left out: a smaller set than the full
+    // inner enclosure, still inside the true one.
+    std::optional<geometry::Region> limited_inner;
+    const auto limited_inner_near_task = [&]() -> const geometry::Region& {
+      if (!limited_inner) {
+        geometry::Box window;
+        for (const geometry::Point& p : spec.task) window.expand(p);
+        const double d = std::max(window.width(), window.height());
+        window.min = {window.min.x - d, window.min.y - d};
+        window.max = {window.max.x + d, window.max.y + d};
+        std::vector<geometry::Box> near;
+        for (const geometry::Box& b : limited_ws().detail.inside_boxes) {
+          if (b.width() >= d / 64 && b.max.x >= window.min.x && b.min.x <= window.max.x && b.max.y >= window.min.y &&
+              b.min.y <= window.max.y) {
+            near.push_back(b);
+          }
+        }
+        limited_inner = near.empty() ? geometry::Region() : inside.intersect(certified::boxes_region(near));
+      }
+      return *limited_inner;
+    };
+    std::optional<bodies::RealWorkspace> real;
+    const auto real_ws = [&]() -> const bodies::RealWorkspace& {
+      if (!real) {
+        bodies::InterferenceOptions o;
+        o.max_depth = spec.interference_depth;
+        o.threads = 1;  // the sweep is parallel over designs
+        real = bodies::real_workspace(*file.bodies, enclosure.exact ? inside : enclosure.outer, o);
+      }
+      return *real;
+    };
     std::size_t col = 0;
     for (const std::string& m : spec.metrics) {
       if (m == "area") {
@@ -375,21 +470,24 @@ DesignRow evaluate_design(const SweepSpec& spec, std::size_t index) {
         row.metrics[col++] = f.area_outside;
       } else if (m == "limited_area") {
         if (file.criteria.any()) {
-          certified::LevelSetOptions o;
-          o.relative_tolerance = spec.criteria_tolerance;
-          const auto lw = criteria::limited_workspace(file, criteria::file_limits(file), o);
-          row.metrics[col] = lw.region.area_lower;
-          row.metrics[col + 1] = lw.region.area_upper;
+          row.metrics[col] = limited_ws().region.area_lower;
+          row.metrics[col + 1] = limited_ws().region.area_upper;
         }
         col += 2;
       } else if (m == "real_area") {
         if (file.bodies) {
-          bodies::InterferenceOptions o;
-          o.max_depth = spec.interference_depth;
-          o.threads = 1;  // the sweep is parallel over designs
-          const auto real = bodies::real_workspace(*file.bodies, enclosure.exact ? inside : enclosure.outer, o);
-          row.metrics[col] = real.real.area_lower;
-          row.metrics[col + 1] = real.real.area_upper;
+          row.metrics[col] = real_ws().real.area_lower;
+          row.metrics[col + 1] = real_ws().real.area_upper;
+        }
+        col += 2;
+      } else if (m == "task_fit_limited" || m == "task_fit_real") {
+        // The task inside the certified inner enclosure: the criteria hold
+        // on it (limited), no part collides anywhere on it (real).
+        const bool lim = m == "task_fit_limited";
+        if (lim ? file.criteria.any() : file.bodies != nullptr) {
+          const auto f = geometry::fit(lim ? limited_inner_near_task() : real_ws().real.inner, spec.task, 1e-9);
+          row.metrics[col] = f.inside ? 1.0 : 0.0;
+          row.metrics[col + 1] = f.margin;
         }
         col += 2;
       } else if (m == "gci") {

@@ -309,8 +309,13 @@ double segment_distance(Point p, Point q, const Curve& c) {
 
 // Largest distance from a point of the polygon to the region (0 inside it),
 // by branch and bound on the 1-Lipschitz distance; returns {value, error}.
+// The farthest point lies in polygon − region, so the search covers only
+// `domains`, the bounding boxes of that set's components (a sliver outside a
+// corner: a tiny box, not the whole polygon at the tolerance's resolution),
+// with rectangular cells split across their longer side.
 std::pair<double, double> farthest_outside(const Region& region, const std::vector<Loop>& loops,
-                                           const std::vector<Point>& polygon, const Box& pb, double tolerance) {
+                                           const std::vector<Point>& polygon, const std::vector<Box>& domains,
+                                           double tolerance) {
   const auto dist_to_region = [&](Point x) {
     if (region.contains(x)) return 0.0;
     double d = std::numeric_limits<double>::infinity();
@@ -335,29 +340,31 @@ std::pair<double, double> farthest_outside(const Region& region, const std::vect
     }
     return d;
   };
-  struct Square {
+  struct Window {
     Point c;
-    double h, bound;
+    double hx, hy, bound;
   };
   double best = 0.0;
   for (const Point& v : polygon) best = std::max(best, dist_to_region(v));
-  auto lower = [](const Square& a, const Square& b) { return a.bound < b.bound; };
-  std::priority_queue<Square, std::vector<Square>, decltype(lower)> queue(lower);
-  auto push = [&](Point c, double h) {
-    const double reach = h * std::numbers::sqrt2;
+  auto lower = [](const Window& a, const Window& b) { return a.bound < b.bound; };
+  std::priority_queue<Window, std::vector<Window>, decltype(lower)> queue(lower);
+  auto push = [&](Point c, double hx, double hy) {
+    const double reach = std::hypot(hx, hy);
     if (polygon_distance(c) > reach) return;  // the cell misses the polygon
     if (in_polygon(c)) best = std::max(best, dist_to_region(c));
-    queue.push({c, h, dist_to_region(c) + reach});
+    queue.push({c, hx, hy, dist_to_region(c) + reach});
   };
-  const double size = std::max(pb.width(), pb.height());
-  push({0.5 * (pb.min.x + pb.max.x), 0.5 * (pb.min.y + pb.max.y)}, 0.5 * size);
+  for (const Box& d : domains) {
+    push({0.5 * (d.min.x + d.max.x), 0.5 * (d.min.y + d.max.y)}, 0.5 * d.width(), 0.5 * d.height());
+  }
   std::size_t evaluations = 0;
   while (!queue.empty() && queue.top().bound - best > tolerance && ++evaluations < 2'000'000) {
-    const Square cell = queue.top();
+    const Window cell = queue.top();
     queue.pop();
-    const double h = 0.5 * cell.h;
-    for (int i = -1; i <= 1; i += 2) {
-      for (int j = -1; j <= 1; j += 2) push({cell.c.x + i * h, cell.c.y + j * h}, h);
+    const bool split_x = cell.hx >= 0.5 * cell.hy, split_y = cell.hy >= 0.5 * cell.hx;
+    const double hx = split_x ? 0.5 * cell.hx : cell.hx, hy = split_y ? 0.5 * cell.hy : cell.hy;
+    for (int i = split_x ? -1 : 0; i <= (split_x ? 1 : 0); i += 2) {
+      for (int j = split_y ? -1 : 0; j <= (split_y ? 1 : 0); j += 2) push({cell.c.x + i * hx, cell.c.y + j * hy}, hx, hy);
     }
   }
   const double upper = queue.empty() ? best : std::max(best, queue.top().bound);
@@ -472,7 +479,12 @@ TaskFit fit(const Region& region, const std::vector<Point>& polygon, double prec
     f.margin_error = 1e-12 * scale_of(pb);
     return f;
   }
-  const auto [far, err] = farthest_outside(region, loops, polygon, pb, precision * scale_of(pb));
+  std::vector<Box> domains;
+  const double slack = 1e-12 * scale_of(pb);  // the boxes' double rounding
+  for (const Component& c : outside.components()) {
+    domains.push_back({{c.bbox.min.x - slack, c.bbox.min.y - slack}, {c.bbox.max.x + slack, c.bbox.max.y + slack}});
+  }
+  const auto [far, err] = farthest_outside(region, loops, polygon, domains, precision * scale_of(pb));
   f.margin = -far;
   f.margin_error = err;
   return f;

@@ -43,6 +43,11 @@ struct SweepSpec {
 /// The metrics a sweep can compute, in column order.
 const std::vector<std::string>& metric_names();
 
+/// The metric that gives a column ("rectangle_area" -> "inscribed_rectangle"),
+/// "" for a column no metric gives; every metric column, in order.
+std::string metric_of_column(const std::string& column);
+const std::vector<std::string>& all_metric_columns();
+
 /// Reads and validates a sweep file; throws io::InputError naming the field.
 SweepSpec load_sweep(const std::filesystem::path& file);
 
@@ -66,6 +71,9 @@ std::vector<std::string> metric_columns(const SweepSpec& spec);
 
 /// Evaluates one design (never throws for a bad design: the row says why).
 DesignRow evaluate_design(const SweepSpec& spec, std::size_t index);
+/// The same for any parameter values (one per parameter, in order), e.g. a
+/// point an optimiser asks for; `index` only labels the row.
+DesignRow evaluate_design(const SweepSpec& spec, std::size_t index, const std::vector<double>& values);
 
 /// Evaluates the designs `indices` on `threads` threads (0: all, 1: serial),
 /// calling `done(row)` from the calling thread's side in completion order,
