@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "design/spec_reading.hpp"
+#include "io/document.hpp"
 #include "io/json_reader.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "pkmws/io/parameters.hpp"
