@@ -92,6 +92,8 @@ std::vector<std::string> write_curve_figures(const io::MechanismFile& mech, cons
 /// name in an existing, writable directory, not a directory itself, no path
 /// given twice. Throws io::InputError naming the first that cannot.
 void check_outputs(const std::vector<std::string>& paths);
+/// A number for text output: printf's %g with `digits` significant digits.
+std::string format_g(double v, int digits = 10);
 /// Writes several files all or nothing: each goes to a temporary file next to
 /// it first; only when all are written are they renamed into place. On any
 /// failure the temporary files are removed and nothing is changed.

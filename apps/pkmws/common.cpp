@@ -269,6 +269,12 @@ std::string CertifiedWork::finish_by_deadline(const std::function<std::string()>
   std::_Exit(2);
 }
 
+std::string format_g(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
 void add_max_time_option(CLI::App* sub, double& seconds) {
   sub->add_option("--max-time", seconds,
                   "Stop refining after SECONDS: the certified bounds reached so far, labelled `stopped` "

@@ -49,11 +49,6 @@ std::optional<double> column(const Side& s, const std::string& name) {
   return std::nullopt;
 }
 
-std::string g(double v, int digits = 10) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
 
 Json area_json(const certified::CertifiedRegion& r) {
   if (r.exact) {
@@ -131,8 +126,8 @@ std::string text_value(const Json& j, const std::string& side) {
   if (wide) {
     return io::interval_text(j[side + "_bounds"][0].get<double>(), j[side + "_bounds"][1].get<double>(), 8);
   }
-  if (j.contains(side + "_error")) return g(j[side].get<double>(), 6) + " ± " + g(j[side + "_error"].get<double>(), 2);
-  return g(j[side].get<double>(), 12);
+  if (j.contains(side + "_error")) return format_g(j[side].get<double>(), 6) + " ± " + format_g(j[side + "_error"].get<double>(), 2);
+  return format_g(j[side].get<double>(), 12);
 }
 
 }  // namespace
@@ -256,7 +251,7 @@ void add_diff(CLI::App& app, std::vector<Command>& commands) {
         return o;
       };
       const auto area_text = [&](const certified::CertifiedRegion& r) {
-        return (r.exact ? g(r.area_lower, 7) : io::interval_text(r.area_lower, r.area_upper, 8)) + " " + aunit;
+        return (r.exact ? format_g(r.area_lower, 7) : io::interval_text(r.area_lower, r.area_upper, 8)) + " " + aunit;
       };
       f.overlays.push_back(piece(a_only.inner, kFillA, "A only: " + area_text(a_only), "a-only"));
       f.overlays.push_back(piece(b_only.inner, kFillB, "B only: " + area_text(b_only), "b-only"));
@@ -294,7 +289,7 @@ void add_diff(CLI::App& app, std::vector<Command>& commands) {
                                          : "certified: [area of the inner, area of the outer enclosure]");
     const auto region_line = [&](const char* label, const char* key) {
       const Json& r = report["regions"][key];
-      const std::string v = exact ? g(r["area"].get<double>(), 15)
+      const std::string v = exact ? format_g(r["area"].get<double>(), 15)
                                   : io::interval_text(r["area_lower"].get<double>(), r["area_upper"].get<double>(), 8);
       std::printf("  %s%s %s\n", pad(label, 8).c_str(), v.c_str(), aunit.c_str());
     };
@@ -307,9 +302,9 @@ void add_diff(CLI::App& app, std::vector<Command>& commands) {
     for (const auto& m : metrics) {
       std::string name = m["metric"].get<std::string>();
       if (!m["unit"].get<std::string>().empty()) name += " (" + m["unit"].get<std::string>() + ")";
-      const std::string change = m["change"].is_null() ? "n/a" : g(m["change"].get<double>(), 8);
+      const std::string change = m["change"].is_null() ? "n/a" : format_g(m["change"].get<double>(), 8);
       const std::string rel =
-          m["relative_change"].is_null() ? "n/a" : g(100.0 * m["relative_change"].get<double>(), 4) + " %";
+          m["relative_change"].is_null() ? "n/a" : format_g(100.0 * m["relative_change"].get<double>(), 4) + " %";
       std::printf("%s%s%s%s%s\n", pad(name, 22).c_str(), pad(text_value(m, "a"), 24).c_str(),
                   pad(text_value(m, "b"), 24).c_str(), pad(change, 18).c_str(), rel.c_str());
     }

@@ -10,12 +10,6 @@ namespace pkmws::cli {
 
 namespace {
 
-std::string g10(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
 // "pressure angle ≤ 40°, reaction ≤ 200 N" from the report's `criteria`.
 std::string limits_text(const Json& criteria) {
   std::string out;
@@ -50,7 +44,7 @@ std::string file_figure(const io::MechanismFile& mech, const AreaResult& result)
     f.region_stroke = "#8a8a8a";
     // A 3-RPR without leg limits ([Briot]'s PAMINSA) has the plane as its workspace: the file's analysis window.
     const std::string domain = mech.model->workspace_label();
-    f.region_legend = domain + " (" + g10(reachable.area()) + " " + unit + ")";
+    f.region_legend = domain + " (" + format_g(reachable.area()) + " " + unit + ")";
     io::FigureOptions::Overlay limited;
     limited.rings = io::traced_inner_rings(result.limited->detail);
     limited.fill = "#f4a3a3";
@@ -80,7 +74,7 @@ std::string file_figure(const io::MechanismFile& mech, const AreaResult& result)
   } else {
     region = result.enclosure.inner;
     const std::size_t n = rep["components"].size();
-    caption = "Exact workspace area = " + g10(rep["area"].get<double>()) + " " + unit + " (" + std::to_string(n) +
+    caption = "Exact workspace area = " + format_g(rep["area"].get<double>()) + " " + unit + " (" + std::to_string(n) +
               " component" + (n == 1 ? "" : "s") + ").";
   }
   if (pose_region.empty()) pose_region = region;
@@ -89,7 +83,7 @@ std::string file_figure(const io::MechanismFile& mech, const AreaResult& result)
     f.region_legend = "reachable workspace";
     auto overlays = real_workspace_overlays(real, unit);
     f.overlays.insert(f.overlays.end(), overlays.begin(), overlays.end());
-    caption = "Reachable workspace " + g10(real.reachable.area_lower) + " " + unit + " (exact, filled); real workspace " +
+    caption = "Reachable workspace " + format_g(real.reachable.area_lower) + " " + unit + " (exact, filled); real workspace " +
               io::interval_text(real.real.area_lower, real.real.area_upper, 10) + " " + unit + " (" + real.real.method() +
               ", black outline): reachable minus the interference of the numbered pairs (hatched). Parts drawn at "
               "the pose P.";

@@ -15,11 +15,6 @@ namespace pkmws::cli {
 
 namespace {
 
-std::string g(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
 
 void print_summary(const design::OptimizeSpec& spec, const design::OptimizeResult& r) {
   std::string phases;
@@ -33,13 +28,13 @@ void print_summary(const design::OptimizeSpec& spec, const design::OptimizeResul
               r.feasible_evaluations, r.time_ms / 1000.0, spec.seed);
   if (!r.feasible) std::printf("no evaluated design satisfies every constraint; the least infeasible one:\n");
   std::printf("%s: %s\n", r.feasible ? "optimum" : "design",
-              r.objective ? g(*r.objective).c_str() : ("none (" + r.best.status + ": " + r.best.reason + ")").c_str());
+              r.objective ? format_g(*r.objective).c_str() : ("none (" + r.best.status + ": " + r.best.reason + ")").c_str());
   for (std::size_t k = 0; k < spec.sweep.parameters.size() && k < r.best.values.size(); ++k) {
-    std::printf("  %s = %s\n", spec.sweep.parameters[k].name.c_str(), g(r.best.values[k]).c_str());
+    std::printf("  %s = %s\n", spec.sweep.parameters[k].name.c_str(), format_g(r.best.values[k]).c_str());
   }
   for (const auto& c : r.constraints) {
     std::printf("  %s: %s\n", c.text.c_str(),
-                c.value ? (g(*c.value) + " (margin " + g(*c.margin) + (c.satisfied ? ", holds)" : ", violated)")).c_str()
+                c.value ? (format_g(*c.value) + " (margin " + format_g(*c.margin) + (c.satisfied ? ", holds)" : ", violated)")).c_str()
                         : "no value (the design is not ok)");
   }
 }
@@ -120,8 +115,8 @@ void add_feasible(CLI::App& app, std::vector<Command>& commands) {
     for (std::size_t b = 0; b < set.boxes.size(); ++b) {
       std::string line;
       for (std::size_t k = 0; k < set.parameters.size(); ++k) {
-        line += (k ? ", " : "") + set.parameters[k] + " in [" + g(set.boxes[b].min[k]) + ", " +
-                g(set.boxes[b].max[k]) + "]";
+        line += (k ? ", " : "") + set.parameters[k] + " in [" + format_g(set.boxes[b].min[k]) + ", " +
+                format_g(set.boxes[b].max[k]) + "]";
       }
       std::printf("  box %zu (%zu cells): %s\n", b, set.boxes[b].cells, line.c_str());
     }

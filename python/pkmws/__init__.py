@@ -166,6 +166,16 @@ def metric_names() -> List[str]:
     return list(_pkmws._metric_names())
 
 
+def _base_file(base: Union[Mapping[str, Any], Mechanism], tmp: str) -> str:
+    """A base mechanism given as a dict or a ``Mechanism``, written to a file in ``tmp``."""
+    if isinstance(base, Mechanism):
+        base = base.document
+    path = _os.path.join(tmp, "base.json")
+    with open(path, "w", encoding="utf-8") as f:
+        _json.dump(base, f, allow_nan=False)
+    return path
+
+
 def sweep(base: Union[str, "_os.PathLike[str]", Mapping[str, Any], Mechanism, None] = None,
           parameters: Optional[Sequence[Mapping[str, Any]]] = None, *,
           metrics: Optional[Sequence[str]] = None, sampling: Optional[str] = None,
@@ -202,15 +212,8 @@ def sweep(base: Union[str, "_os.PathLike[str]", Mapping[str, Any], Mechanism, No
         if value is not None:
             doc[key] = list(value) if key == "metrics" else value
     with _tempfile.TemporaryDirectory(prefix="pkmws-sweep-") as tmp:
-        if isinstance(base, Mechanism):
-            base = base.document
-        if isinstance(base, Mapping):
-            base_path = _os.path.join(tmp, "base.json")
-            with open(base_path, "w", encoding="utf-8") as f:
-                _json.dump(base, f, allow_nan=False)
-        else:
-            base_path = _os.path.abspath(_os.fsdecode(_os.fspath(base)))
-        doc["base"] = base_path
+        doc["base"] = _base_file(base, tmp) if isinstance(base, (Mechanism, Mapping)) else \
+            _os.path.abspath(_os.fsdecode(_os.fspath(base)))
         spec_path = _os.path.join(tmp, "sweep.json")
         try:
             text = _json.dumps(doc, allow_nan=False)
@@ -248,13 +251,8 @@ def optimize(spec: Union[str, "_os.PathLike[str]", Mapping[str, Any]], *,
         if isinstance(spec, Mapping):
             doc = dict(spec)
             base = doc.get("base")
-            if isinstance(base, Mechanism):
-                base = base.document
-            if isinstance(base, Mapping):
-                base_path = _os.path.join(tmp, "base.json")
-                with open(base_path, "w", encoding="utf-8") as f:
-                    _json.dump(base, f, allow_nan=False)
-                doc["base"] = base_path
+            if isinstance(base, (Mechanism, Mapping)):
+                doc["base"] = _base_file(base, tmp)
             try:
                 text = _json.dumps(doc, allow_nan=False)
             except (TypeError, ValueError) as e:

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "pkmws/io/export.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 
 namespace pkmws::design {
@@ -31,17 +32,6 @@ std::string short_num(double v) {
   return buf;
 }
 
-std::string escape_xml(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -279,7 +269,7 @@ std::string feasible_figure(const FeasibleSet& set) {
   s << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   std::string title = "feasible designs";
   for (std::size_t k = 0; k < set.conditions.size(); ++k) title += (k ? ", " : ": ") + set.conditions[k].text;
-  s << "<text x=\"" << W / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">" << escape_xml(title)
+  s << "<text x=\"" << W / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">" << io::xml_escape(title)
     << "</text>\n";
   s << "<g class=\"boxes\" fill=\"#a6dba0\" stroke=\"#1b7837\" stroke-width=\"1\">\n";
   for (const auto& b : set.boxes) {
@@ -312,9 +302,9 @@ std::string feasible_figure(const FeasibleSet& set) {
   }
   s << "</g>\n";
   s << "<text x=\"" << (left + W - right) / 2 << "\" y=\"" << H - 16 << "\" text-anchor=\"middle\">"
-    << escape_xml(set.parameters[0]) << "</text>\n";
+    << io::xml_escape(set.parameters[0]) << "</text>\n";
   s << "<text transform=\"translate(18," << (top + H - bottom) / 2 << ") rotate(-90)\" text-anchor=\"middle\">"
-    << escape_xml(set.parameters[1]) << "</text>\n";
+    << io::xml_escape(set.parameters[1]) << "</text>\n";
   s << "</svg>\n";
   return s.str();
 }
