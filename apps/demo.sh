@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # make demo: exact workspaces of every bundled mechanism, their figures and a
 # summary table in out/ (summary.md, summary.json, one SVG per dataset), a
-# design sweep (CSV/JSON), an atlas figure and the MOMA program of building
-# (apps/program_of_building.sh).
+# design sweep (CSV/JSON), an atlas figure, the MOMA program of building
+# (apps/program_of_building.sh) and two syntheses (pkmws optimize).
 set -euo pipefail
 pkmws=${1:-build/bin/pkmws}
 out=${2:-out}
@@ -26,5 +26,13 @@ echo "Design space: MOMA M1 over rod length x guide angle (table) and rod length
   --title "MOMA M1: largest inscribed rectangle (guides at x = ∓100 mm)" -o "$out/atlas_moma_m1.svg"
 echo
 bash apps/program_of_building.sh "$pkmws" "$out"
+echo
+echo "Synthesis: the shortest MOMA M1 rods that carry an 80 x 40 mm task with 5 mm clearance"
+echo "(closed form: sqrt(140^2 + 120^2) + 5 = 189.3909 mm), and the smallest machine (rods + stroke)"
+echo "whose inscribed rectangle is at least 20000 mm²:"
+"$pkmws" optimize examples/optimize/moma_m1_shortest_rods.json -o "$out/optimize_moma_m1_shortest_rods.json" \
+  --design "$out/moma_m1_shortest_rods.json" | sed -n '1,3p'
+"$pkmws" optimize examples/optimize/moma_m1_smallest_machine.json --history "$out/optimize_moma_m1_smallest_machine.csv" \
+  | sed -n '1,6p'
 echo
 echo "Figures and the summary table are in $out/ (open $out/summary.md)."
