@@ -135,7 +135,6 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
     std::string bound_written;  // the enclosure written ("" for an exact region), for --json
     const std::string content = work.finish_by_deadline(
         [&]() -> std::string {
-          std::string limited_caption;
           certified::CertifiedRegion enclosure;
           if (limited) {
             certified::LevelSetOptions lo;
@@ -144,11 +143,6 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
             const auto lw = criteria::limited_workspace(mech, criteria::file_limits(mech), work.options(lo));
             if (lw.detail.stopped) refuse_stopped();
             enclosure = lw.region;
-            for (const auto& l : criteria::file_limits(mech)) {
-              char buf[96];
-              std::snprintf(buf, sizeof buf, "%s%s <= %g", limited_caption.empty() ? "" : ", ", l.name.c_str(), l.threshold);
-              limited_caption += buf;
-            }
           } else {
             enclosure = workspace_enclosure_of(mech);
           }
@@ -176,28 +170,18 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
             if (real.outer.empty()) throw io::InputError(a->file + ": the real workspace is empty: nothing to export");
           }
           std::string text;
-          switch (format) {
-            case io::ExportFormat::svg:
-              if (a->bare) {
-                text = io::to_svg(region, options);
-              } else {
-                // --real: the real workspace's inner enclosure (the figure without --real draws it outlined).
-                io::FigureOptions figure;
-                figure.title = mech.name;
-                figure.region_legend = "real workspace (inner enclosure)";
-                char area[64];
-                std::snprintf(area, sizeof area, "%.10g", region.area());
-                figure.caption = "Inner enclosure of the real workspace (certainly reachable without collision): area " +
-                                 std::string(area) + " " + area_unit(mech) + ".";
-                const mechanisms::Pose pose = sample_pose(mech, region);
-                figure.parts = figure_parts(mech, {pose.x, pose.y});
-                text = io::workspace_figure(mech, region, pose, figure);
-              }
-              break;
-            case io::ExportFormat::dxf: text = io::to_dxf(region, options); break;
-            case io::ExportFormat::wkt: text = io::to_wkt(region, options); break;
-            case io::ExportFormat::geojson: text = io::to_geojson(region, options); break;
-            case io::ExportFormat::csv: text = io::to_csv(region, options); break;
+          if (format == io::ExportFormat::svg && !a->bare) {
+            // --real: the real workspace's inner enclosure (the figure without --real draws it outlined).
+            io::FigureOptions figure;
+            figure.title = mech.name;
+            figure.region_legend = "real workspace (inner enclosure)";
+            figure.caption = "Inner enclosure of the real workspace (certainly reachable without collision): area " +
+                             format_g(region.area()) + " " + area_unit(mech) + ".";
+            const mechanisms::Pose pose = sample_pose(mech, region);
+            figure.parts = figure_parts(mech, {pose.x, pose.y});
+            text = io::workspace_figure(mech, region, pose, figure);
+          } else {
+            text = io::to_format(region, format, options);
           }
           bound_written = enclosure.exact && !a->real ? "" : bound;
           return text;

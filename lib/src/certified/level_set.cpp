@@ -433,27 +433,25 @@ void envelope_polygons(const CellTrace& t, const Box& cell, bool use_hi, std::ve
   if (!env.empty()) emit(env.back().u);
 }
 
-// Splits a box that is in S wherever it is in W: parts inside W count fully,
-// parts across W's boundary at the depth limit stay undecided.
-void split_within(const WithinTest& within_test, const Box& b, int depth, std::vector<Box>& inside,
-                  std::vector<Box>& undecided, double& inside_area, double& undecided_area) {
+// The area bounds of a box that is in S wherever it is in W, from splits
+// against W alone: parts inside W count fully, parts across W's boundary at
+// the depth limit count as undecided.
+void split_within(const WithinTest& within_test, const Box& b, int depth, double& inside_area, double& undecided_area) {
   const CellState c = within_test(b);
   if (c == CellState::outside) return;
   if (c == CellState::inside) {
-    inside.push_back(b);
     inside_area += box_area(b);
     return;
   }
   if (depth == 0) {
-    undecided.push_back(b);
     undecided_area += box_area(b);
     return;
   }
   const double xm = 0.5 * (b.min.x + b.max.x), ym = 0.5 * (b.min.y + b.max.y);
-  split_within(within_test, make_box(b.min.x, b.min.y, xm, ym), depth - 1, inside, undecided, inside_area, undecided_area);
-  split_within(within_test, make_box(xm, b.min.y, b.max.x, ym), depth - 1, inside, undecided, inside_area, undecided_area);
-  split_within(within_test, make_box(b.min.x, ym, xm, b.max.y), depth - 1, inside, undecided, inside_area, undecided_area);
-  split_within(within_test, make_box(xm, ym, b.max.x, b.max.y), depth - 1, inside, undecided, inside_area, undecided_area);
+  split_within(within_test, make_box(b.min.x, b.min.y, xm, ym), depth - 1, inside_area, undecided_area);
+  split_within(within_test, make_box(xm, b.min.y, b.max.x, ym), depth - 1, inside_area, undecided_area);
+  split_within(within_test, make_box(b.min.x, ym, xm, b.max.y), depth - 1, inside_area, undecided_area);
+  split_within(within_test, make_box(xm, ym, b.max.x, b.max.y), depth - 1, inside_area, undecided_area);
 }
 
 // Boxes under (sgn > 0) / above (sgn < 0) a piecewise-linear envelope: on each
@@ -631,8 +629,7 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
         // W alone (cheap test); the regions take the whole box, clipped to W
         // exactly below (the split's hundreds of boxes along W's boundary
         // would only make the Boolean operations slow).
-        std::vector<Box> in_parts, undecided_parts;
-        split_within(within_test, b, 8, in_parts, undecided_parts, in_lower, undecided_in);
+        split_within(within_test, b, 8, in_lower, undecided_in);
         inside_all.push_back(b);
       }
     }

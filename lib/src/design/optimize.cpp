@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include "design/spec_reading.hpp"
-#include "io/document.hpp"
 #include "io/json_reader.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "pkmws/io/parameters.hpp"
@@ -379,20 +378,6 @@ std::optional<double> column_value(const OptimizeSpec& spec, const DesignRow& ro
 
 }  // namespace
 
-namespace {
-
-// The base document with the parameters set to `values` (the base itself
-// when there are none: no evaluation was made).
-json design_document(const OptimizeSpec& spec, const std::vector<double>& values) {
-  json document = json::parse(spec.sweep.base_document);
-  for (std::size_t k = 0; k < spec.sweep.parameters.size() && k < values.size(); ++k) {
-    for (const auto& path : spec.sweep.parameters[k].paths) io::field_at(document, path, "design") = values[k];
-  }
-  return document;
-}
-
-}  // namespace
-
 std::optional<double> objective_value(const OptimizeSpec& spec, const DesignRow& row) {
   if (row.status != "ok") return std::nullopt;
   if (spec.objective.weights.empty()) return column_value(spec, row, spec.objective.column);
@@ -601,13 +586,13 @@ std::string optimize_report(const OptimizeSpec& spec, const OptimizeResult& resu
             {"feasible_evaluations", result.feasible_evaluations},
             {"phases", phases},
             {"seed", spec.seed},
-            {"document", design_document(spec, result.best.values)}};
+            {"document", reading::design_document(spec.sweep, result.best.values)}};
   if (timing) j["time_ms"] = result.time_ms;
   return j.dump(1);
 }
 
 std::string design_text(const OptimizeSpec& spec, const std::vector<double>& values) {
-  return design_document(spec, values).dump(2) + "\n";
+  return reading::design_document(spec.sweep, values).dump(2) + "\n";
 }
 
 }  // namespace pkmws::design

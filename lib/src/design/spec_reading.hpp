@@ -33,4 +33,8 @@ void read_task(io::detail::JsonReader& r, SweepSpec& spec);
 /// `rectangle_precision`, `criteria_tolerance`, `interference_depth`, `gci_cells` (when present).
 void read_accuracy(io::detail::JsonReader& r, SweepSpec& spec);
 
+/// The base document with each parameter's paths set to `values` (as many
+/// parameters as values are given); throws io::InputError naming the path.
+nlohmann::json design_document(const SweepSpec& spec, const std::vector<double>& values);
+
 }  // namespace pkmws::design::reading

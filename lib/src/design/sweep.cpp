@@ -223,6 +223,14 @@ void read_accuracy(JsonReader& r, SweepSpec& spec) {
   }
 }
 
+nlohmann::json design_document(const SweepSpec& spec, const std::vector<double>& values) {
+  json doc = json::parse(spec.base_document);
+  for (std::size_t k = 0; k < spec.parameters.size() && k < values.size(); ++k) {
+    for (const std::string& path : spec.parameters[k].paths) set_path(doc, path, values[k], path);
+  }
+  return doc;
+}
+
 }  // namespace reading
 
 std::string metric_of_column(const std::string& column) {
@@ -374,11 +382,7 @@ DesignRow evaluate_design(const SweepSpec& spec, std::size_t index, const std::v
   };
   io::MechanismFile file;
   try {
-    json doc = json::parse(spec.base_document);
-    for (std::size_t k = 0; k < spec.parameters.size(); ++k) {
-      for (const std::string& path : spec.parameters[k].paths) set_path(doc, path, row.values[k], path);
-    }
-    file = io::parse_mechanism(doc, "design " + std::to_string(index));
+    file = io::parse_mechanism(reading::design_document(spec, row.values), "design " + std::to_string(index));
   } catch (const std::exception& e) {
     return finish("invalid", e.what());
   }

@@ -69,15 +69,7 @@ std::string export_boundary(const MechanismFile& file, io::ExportFormat format, 
     options.area_lower = r.area_lower;
     options.area_upper = r.area_upper;
   }
-  const geometry::Region& boundary = r.exact || bound == io::Bound::outer ? r.outer : r.inner;
-  switch (format) {
-    case io::ExportFormat::svg: return io::to_svg(boundary, options);
-    case io::ExportFormat::dxf: return io::to_dxf(boundary, options);
-    case io::ExportFormat::wkt: return io::to_wkt(boundary, options);
-    case io::ExportFormat::geojson: return io::to_geojson(boundary, options);
-    case io::ExportFormat::csv: return io::to_csv(boundary, options);
-  }
-  throw InputError("export: unknown format");
+  return io::to_format(r.exact || bound == io::Bound::outer ? r.outer : r.inner, format, options);
 }
 
 void export_boundary(const MechanismFile& file, io::ExportFormat format, const std::filesystem::path& out,

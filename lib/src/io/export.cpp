@@ -17,6 +17,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <stdexcept>
 #include <utility>
 #include <system_error>
 
@@ -937,6 +938,17 @@ std::string to_csv(const Region& region, const ExportOptions& options) {
     }
   }
   return out;
+}
+
+std::string to_format(const Region& region, ExportFormat format, const ExportOptions& options) {
+  switch (format) {
+    case ExportFormat::svg: return to_svg(region, options);
+    case ExportFormat::dxf: return to_dxf(region, options);
+    case ExportFormat::wkt: return to_wkt(region, options);
+    case ExportFormat::geojson: return to_geojson(region, options);
+    case ExportFormat::csv: return to_csv(region, options);
+  }
+  throw std::invalid_argument("to_format: unknown format");
 }
 
 std::string xml_escape(std::string_view text) {

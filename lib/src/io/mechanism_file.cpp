@@ -142,17 +142,7 @@ MechanismFile load_mechanism(const std::filesystem::path& path) {
   if (!in) throw InputError(path.string() + ": cannot be read");
   std::stringstream buffer;
   buffer << in.rdbuf();
-  nlohmann::json document;
-  try {
-    document = detail::parse_json_text(buffer.str());
-  } catch (const InputError& e) {
-    throw InputError(path.string() + ": " + e.what());
-  }
-  try {
-    return parse_mechanism(document, path.string());
-  } catch (const InputError& e) {
-    throw InputError(path.string() + ": " + e.what());
-  }
+  return parse_mechanism_text(buffer.str(), path.string());
 }
 
 }  // namespace pkmws::io

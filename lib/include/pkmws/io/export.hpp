@@ -101,6 +101,8 @@ std::string to_geojson(const geometry::Region& region, const ExportOptions& opti
 /// CSV, one row per boundary curve:
 /// component,loop,hole,kind,x0,y0,x1,y1,cx,cy,r,sweep_deg
 std::string to_csv(const geometry::Region& region, const ExportOptions& options = {});
+/// The boundary in `format`: to_svg (bare), to_dxf, to_wkt, to_geojson or to_csv.
+std::string to_format(const geometry::Region& region, ExportFormat format, const ExportOptions& options = {});
 
 /// The paper-style figure (FigureOptions, workspace_figure): pkmws/io/figure.hpp.
 
