@@ -15,6 +15,7 @@
 #include "pkmws/geometry/primitives.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "support/fixtures.hpp"
+#include "support/raster_rectangle.hpp"
 
 using namespace pkmws::geometry;
 
@@ -30,39 +31,6 @@ void expect_certified(const InscribedRectangle& r, double exact, double rel) {
   EXPECT_GE(r.area_upper, exact * (1 - 1e-12));
   EXPECT_NEAR(r.area, exact, rel * exact);
   EXPECT_NEAR(r.box.width() * r.box.height(), r.area, 1e-12 * exact);
-}
-
-// Maximal all-inside rectangle of a raster (cells whose four corners and
-// centre are inside), by the histogram method: an estimate independent of the
-// branch and bound, within about one cell of the truth.
-double raster_rectangle(const Component& c, int n) {
-  const Box b = c.outer.bbox();
-  const double dx = b.width() / n, dy = b.height() / n;
-  std::vector<std::vector<char>> corner(n + 1, std::vector<char>(n + 1));
-  for (int i = 0; i <= n; ++i) {
-    for (int j = 0; j <= n; ++j) corner[i][j] = inside(c, {b.min.x + i * dx, b.min.y + j * dy});
-  }
-  std::vector<int> height(n, 0);
-  double best = 0.0;
-  for (int j = 0; j < n; ++j) {  // rows bottom to top
-    for (int i = 0; i < n; ++i) {
-      const bool in = corner[i][j] && corner[i + 1][j] && corner[i][j + 1] && corner[i + 1][j + 1] &&
-                      inside(c, {b.min.x + (i + 0.5) * dx, b.min.y + (j + 0.5) * dy});
-      height[i] = in ? height[i] + 1 : 0;
-    }
-    std::vector<int> stack;
-    for (int i = 0; i <= n; ++i) {
-      const int h = i < n ? height[i] : 0;
-      while (!stack.empty() && height[stack.back()] >= h) {
-        const int top = height[stack.back()];
-        stack.pop_back();
-        const int left = stack.empty() ? 0 : stack.back() + 1;
-        best = std::max(best, top * dy * (i - left) * dx);
-      }
-      stack.push_back(i);
-    }
-  }
-  return best;
 }
 
 }  // namespace
@@ -133,7 +101,7 @@ TEST(InscribedRectangle, RandomRegionsAgainstARaster) {
     for (const Component& c : r.components(1e-9)) {
       if (c.area < 0.05) continue;
       const auto rect = largest_inscribed_rectangle(c, kPrecision, {}, &r);
-      const double raster = raster_rectangle(c, 300);
+      const double raster = pkmws::test::raster_rectangle(c, 300);
       SCOPED_TRACE("trial " + std::to_string(trial));
       EXPECT_TRUE(rect.verified);
       EXPECT_LE(rect.area_upper - rect.area, 1e-9 * rect.area_upper);
@@ -153,7 +121,7 @@ TEST(InscribedRectangle, MomaM1Workspace) {
   const auto rect = largest_inscribed_rectangle(c, kPrecision, {}, &w);
   EXPECT_TRUE(rect.verified);
   EXPECT_LE(rect.area_upper - rect.area, 1e-9 * rect.area_upper);
-  const double raster = raster_rectangle(c, 600);
+  const double raster = pkmws::test::raster_rectangle(c, 600);
   const Box b = c.outer.bbox();
   const double cell = (b.width() + b.height()) / 600.0 * std::max(b.width(), b.height());
   EXPECT_NEAR(rect.area, raster, 4 * cell);

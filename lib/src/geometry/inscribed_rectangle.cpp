@@ -171,10 +171,12 @@ class Search {
 // Best-first branch and bound shared by the searches: `upper(c)` bounds every
 // rectangle of cell c, `candidate(c)` is one that fits (the lower bound),
 // `split(c)` halves c. Stops when the best bound left is within `precision`
-// of the best candidate, or after `max_evaluations` candidates.
+// of the best candidate, or after `max_evaluations` candidates, or as soon as
+// the best bound left is at most `stop_below` (a caller that only needs to
+// know the area does not exceed it; `area_upper` is then still valid).
 template <class C, class Upper, class Make, class Split>
 InscribedRectangle best_first(C root, Upper&& upper, Make&& candidate, Split&& split, double precision,
-                              std::size_t max_evaluations) {
+                              std::size_t max_evaluations, double stop_below = 0.0) {
   auto lower_ub = [](const C& a, const C& b) { return a.upper < b.upper; };
   std::priority_queue<C, std::vector<C>, decltype(lower_ub)> queue(lower_ub);
   InscribedRectangle out;
@@ -190,6 +192,7 @@ InscribedRectangle best_first(C root, Upper&& upper, Make&& candidate, Split&& s
   while (!queue.empty()) {
     const C top = queue.top();
     if (top.upper <= best.area || (top.upper - best.area) <= precision * top.upper) break;
+    if (top.upper <= stop_below) break;
     if (out.evaluations >= max_evaluations) break;
     queue.pop();
     for (C h : split(top)) {
@@ -210,7 +213,8 @@ struct Cell {
   double upper;
 };
 
-InscribedRectangle search_free_or_aspect(const Search& s, double precision, std::size_t max_evaluations) {
+InscribedRectangle search_free_or_aspect(const Search& s, double precision, std::size_t max_evaluations,
+                                         double stop_below = 0.0) {
   const Box& bb = s.bbox();
   return best_first(
       Cell{bb.min.x, bb.max.x, bb.min.x, bb.max.x, 0.0},
@@ -225,7 +229,7 @@ InscribedRectangle search_free_or_aspect(const Search& s, double precision, std:
         }
         return halves;
       },
-      precision, max_evaluations);
+      precision, max_evaluations, stop_below);
 }
 
 InscribedRectangle search_width(const Prepared& prepared, double w, double precision,
@@ -257,10 +261,6 @@ InscribedRectangle search_width(const Prepared& prepared, double w, double preci
         return std::array<Interval, 2>{Interval{i.a, m, 0.0}, Interval{m, i.b, 0.0}};
       },
       precision, max_evaluations);
-}
-
-bool box_inside(const Region& region, const Box& box) {
-  return rectangle(box).subtract(region).empty();
 }
 
 // ---- distances between boundaries ------------------------------------------
@@ -373,6 +373,195 @@ std::pair<double, double> farthest_outside(const Region& region, const std::vect
 
 }  // namespace
 
+namespace {
+
+void check_arguments(double precision, RectangleShape shape) {
+  if (!(precision > 0.0) || !std::isfinite(precision)) {
+    throw std::invalid_argument("inscribed rectangle: precision must be positive");
+  }
+  if (shape.kind != RectangleShape::Kind::free && !(shape.value > 0.0 && std::isfinite(shape.value))) {
+    throw std::invalid_argument(shape.kind == RectangleShape::Kind::aspect
+                                    ? "inscribed rectangle: aspect ratio must be positive"
+                                    : "inscribed rectangle: width must be positive");
+  }
+}
+
+// Checks the rectangle against the exact region (its corners as an exact
+// polygon); shrinks it about its centre by growing relative amounts if
+// rounding put a corner outside.
+void verify(InscribedRectangle& out, const Region& region) {
+  if (out.box.empty() || out.area <= 0.0) return;
+  const Point c{0.5 * (out.box.min.x + out.box.max.x), 0.5 * (out.box.min.y + out.box.max.y)};
+  const double w = out.box.width(), h = out.box.height();
+  for (double shrink = 0.0; shrink <= 1e-6; shrink = shrink == 0.0 ? 1e-13 : shrink * 10.0) {
+    InscribedRectangle t = out;
+    const double hw = 0.5 * w * (1.0 - shrink), hh = 0.5 * h * (1.0 - shrink);
+    t.box.min = {c.x - hw, c.y - hh};
+    t.box.max = {c.x + hw, c.y + hh};
+    const auto k = t.corners();
+    const Region r = t.angle == 0.0 ? rectangle(t.box) : polygon({k.begin(), k.end()});
+    if (r.subtract(region).empty()) {
+      out.box = t.box;
+      out.area = t.box.width() * t.box.height();
+      out.verified = true;
+      return;
+    }
+  }
+}
+
+// An upper bound of the squared diameter of a loop: the farthest pair of a
+// polyline within `tolerance` of the curves, plus twice the tolerance.
+double squared_diameter_bound(const Loop& loop) {
+  const Box b = loop.bbox();
+  const double tolerance = 1e-6 * std::max(b.width(), b.height());
+  std::vector<Point> p = loop.polyline(tolerance);
+  // The farthest pair is a pair of convex-hull vertices (Andrew's monotone chain).
+  std::sort(p.begin(), p.end(), [](Point u, Point v) { return u.x < v.x || (u.x == v.x && u.y < v.y); });
+  std::vector<Point> hull;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t base = hull.size();
+    for (const Point& q : p) {
+      while (hull.size() >= base + 2 && cross(hull.back() - hull[hull.size() - 2], q - hull[hull.size() - 2]) <= 0.0) {
+        hull.pop_back();
+      }
+      hull.push_back(q);
+    }
+    hull.pop_back();
+    std::reverse(p.begin(), p.end());
+  }
+  double far = 0.0;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    for (std::size_t j = i + 1; j < hull.size(); ++j) far = std::max(far, norm(hull[i] - hull[j]));
+  }
+  far = far * (1.0 + 1e-12) + 2.0 * tolerance;
+  return far * far;
+}
+
+// The component turned by `angle` (radians, counter-clockwise) about the origin.
+Component turned(const Component& c, double angle) {
+  const double cs = std::cos(angle), sn = std::sin(angle);
+  const auto turn = [&](Point p) { return Point{cs * p.x - sn * p.y, sn * p.x + cs * p.y}; };
+  const auto turn_loop = [&](const Loop& l) {
+    Loop out = l;
+    for (Curve& k : out.curves) {
+      k.source = turn(k.source);
+      k.target = turn(k.target);
+      k.center = turn(k.center);
+    }
+    return out;
+  };
+  Component out;
+  out.outer = turn_loop(c.outer);
+  for (const Loop& h : c.holes) out.holes.push_back(turn_loop(h));
+  out.area = c.area;
+  out.perimeter = c.perimeter;
+  out.centroid = turn(c.centroid);
+  out.bbox = out.outer.bbox();
+  return out;
+}
+
+// Branch and bound over the angle. An interval of angles [m - d, m + d] is
+// bounded by one axis-aligned search of the component turned by -m: a
+// rectangle inside at an angle within d of m, with half sides a >= b,
+// contains the rectangle at angle m with the same centre and aspect scaled by
+// 1 / (cos d + (a / b) sin d), so its area is at most that search's upper
+// bound times (cos d + rho sin d)^2, rho >= a / b. For a given aspect k,
+// rho = max(k, 1 / k); for a free aspect only rectangles larger than the best
+// found matter, and a^2 + b^2 <= D^2 / 4 (D the diameter) with 4ab > best
+// gives a / b <= D^2 / best.
+InscribedRectangle search_any_angle(const Component& component, double precision, RectangleShape shape,
+                                    std::size_t max_evaluations) {
+  const double pi = std::numbers::pi;
+  const bool free_aspect = shape.kind == RectangleShape::Kind::free;
+  // A free rectangle turned by pi/2 is one of the same set; one of aspect k
+  // turned by pi/2 has aspect 1/k.
+  const double period = free_aspect ? 0.5 * pi : pi;
+  const double diameter2 = squared_diameter_bound(component.outer);
+  InscribedRectangle best;
+  std::size_t evaluations = 0, orientations = 0;
+  const auto rho = [&]() {
+    if (!free_aspect) return std::max(shape.value, 1.0 / shape.value);
+    // a / b + b / a = (a^2 + b^2) / (ab) <= q = D^2 / best: a / b is at most
+    // the larger root of r^2 - q r + 1.
+    const double q = best.area > 0.0 ? diameter2 / best.area : std::numeric_limits<double>::infinity();
+    return q >= 2.0 ? 0.5 * (q + std::sqrt((q - 2.0) * (q + 2.0))) : 1.0;
+  };
+  const auto factor = [&](double d) {
+    if (d == 0.0) return 1.0;
+    const double f = std::cos(d) + rho() * std::sin(d);
+    return std::isfinite(f) ? f * f : std::numeric_limits<double>::infinity();
+  };
+  // The axis-aligned search at angle m; its precision need not beat the
+  // interval's own bound factor, and it may stop once its bound shows the
+  // interval cannot beat the best so far.
+  const auto search_at = [&](double m, double d) {
+    const Component t = turned(component, -m);
+    const Prepared prepared(t);
+    const double f = factor(d);
+    const double local = std::clamp(0.25 * (f - 1.0), 0.25 * precision, 1e-2);
+    const double stop_below = std::isfinite(f) ? best.area / f : 0.0;
+    const std::size_t budget = max_evaluations > evaluations ? max_evaluations - evaluations : 1;
+    InscribedRectangle r = search_free_or_aspect(Search(prepared, shape), local, budget, stop_below);
+    evaluations += r.evaluations;
+    ++orientations;
+    r.angle = m;
+    if (r.area > best.area) best = r;
+    return r.area_upper;
+  };
+  struct Turn {
+    double m, d, upper_mid, upper;
+  };
+  auto lower_ub = [](const Turn& a, const Turn& b) { return a.upper < b.upper; };
+  std::priority_queue<Turn, std::vector<Turn>, decltype(lower_ub)> queue(lower_ub);
+  // Intervals centred on k period / 16 (half-widths pi / 64 or pi / 32), cut
+  // in three so that every centre, angle 0 among them, is searched again
+  // with each refinement.
+  constexpr int kStart = 16;
+  std::vector<Turn> start;
+  for (int i = 0; i < kStart; ++i) {
+    const double d = 0.5 * period / kStart;
+    start.push_back({2 * i * d, d, 0.0, 0.0});
+  }
+  for (Turn& t : start) t.upper_mid = search_at(t.m, t.d);
+  for (Turn& t : start) {  // bounds once the best of the first searches is known
+    t.upper = t.upper_mid * factor(t.d);
+    if (t.upper > best.area) queue.push(t);
+  }
+  while (!queue.empty()) {
+    const Turn top = queue.top();
+    if (top.upper <= best.area || (top.upper - best.area) <= precision * top.upper) break;
+    if (evaluations >= max_evaluations) break;
+    queue.pop();
+    for (double side : {-2.0, 0.0, 2.0}) {
+      Turn h{top.m + side * top.d / 3.0, top.d / 3.0, 0.0, 0.0};
+      h.upper_mid = search_at(h.m, h.d);
+      // The parent's bound covers the half too (and is the better one when
+      // the budget ran out inside this search).
+      h.upper = std::min(top.upper, h.upper_mid * factor(h.d));
+      if (h.upper > best.area) queue.push(h);
+    }
+  }
+  best.area_upper = queue.empty() ? best.area : std::max(best.area, queue.top().upper);
+  best.evaluations = evaluations;
+  best.orientations = orientations;
+  // The angle in [0, period): turning the rectangle's frame by the period
+  // keeps the set (a free rectangle's sides swap).
+  if (best.angle < 0.0 || best.angle >= period) {
+    const double k = std::floor(best.angle / period);
+    const double a = best.angle - k * period;
+    // Rotate the box in the frame so that the same rectangle is described at angle a.
+    const double turn = best.angle - a;  // a multiple of the period
+    const int quarter = static_cast<int>(std::lround(turn / (0.5 * pi))) & 3;
+    Box b = best.box;
+    for (int q = 0; q < quarter; ++q) b = Box{{-b.max.y, b.min.x}, {-b.min.y, b.max.x}};  // R(pi/2) b
+    best.box = b;
+    best.angle = a < period ? a : 0.0;  // a == period: -angle was a rounding of 0
+  }
+  return best;
+}
+
+}  // namespace
+
 FreeInterval free_interval(const Component& component, double x0, double x1, double slack) {
   return free_interval(Prepared(component), x0, x1, slack);
 }
@@ -421,37 +610,35 @@ FreeInterval free_interval(const Prepared& prepared, double x0, double x1, doubl
 
 }  // namespace
 
+std::array<Point, 4> InscribedRectangle::corners() const {
+  const double c = std::cos(angle), s = std::sin(angle);
+  const auto turn = [&](double x, double y) { return Point{c * x - s * y, s * x + c * y}; };
+  return {turn(box.min.x, box.min.y), turn(box.max.x, box.min.y), turn(box.max.x, box.max.y),
+          turn(box.min.x, box.max.y)};
+}
+
 InscribedRectangle largest_inscribed_rectangle(const Component& component, double precision, RectangleShape shape,
                                                const Region* region, std::size_t max_evaluations) {
-  if (!(precision > 0.0) || !std::isfinite(precision)) {
-    throw std::invalid_argument("inscribed rectangle: precision must be positive");
-  }
-  if (shape.kind != RectangleShape::Kind::free && !(shape.value > 0.0 && std::isfinite(shape.value))) {
-    throw std::invalid_argument(shape.kind == RectangleShape::Kind::aspect
-                                    ? "inscribed rectangle: aspect ratio must be positive"
-                                    : "inscribed rectangle: width must be positive");
-  }
+  check_arguments(precision, shape);
   if (component.outer.curves.empty()) return {};
   const Prepared prepared(component);
   InscribedRectangle out = shape.kind == RectangleShape::Kind::width
                                ? search_width(prepared, shape.value, precision, max_evaluations)
                                : search_free_or_aspect(Search(prepared, shape), precision, max_evaluations);
-  if (region == nullptr || out.box.empty() || out.area <= 0.0) return out;
-  // Check the rectangle against the exact region; shrink it about its centre
-  // by growing relative amounts if rounding put a corner outside.
-  const Point c{0.5 * (out.box.min.x + out.box.max.x), 0.5 * (out.box.min.y + out.box.max.y)};
-  for (double shrink = 0.0; shrink <= 1e-6; shrink = shrink == 0.0 ? 1e-13 : shrink * 10.0) {
-    Box b;
-    const double hw = 0.5 * out.box.width() * (1.0 - shrink), hh = 0.5 * out.box.height() * (1.0 - shrink);
-    b.min = {c.x - hw, c.y - hh};
-    b.max = {c.x + hw, c.y + hh};
-    if (box_inside(*region, b)) {
-      out.box = b;
-      out.area = b.width() * b.height();
-      out.verified = true;
-      return out;
-    }
+  if (region != nullptr) verify(out, *region);
+  return out;
+}
+
+InscribedRectangle largest_inscribed_rectangle_any_angle(const Component& component, double precision,
+                                                         RectangleShape shape, const Region* region,
+                                                         std::size_t max_evaluations) {
+  check_arguments(precision, shape);
+  if (shape.kind == RectangleShape::Kind::width) {
+    throw std::invalid_argument("inscribed rectangle: a given width needs a fixed orientation");
   }
+  if (component.outer.curves.empty()) return {};
+  InscribedRectangle out = search_any_angle(component, precision, shape, max_evaluations);
+  if (region != nullptr) verify(out, *region);
   return out;
 }
 

@@ -5,6 +5,7 @@
 // rectangle is checked against the exact Region through its public interface.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -23,11 +24,19 @@ struct RectangleShape {
 };
 
 struct InscribedRectangle {
-  Box box;                       // lies inside the component (empty: none found)
-  double area = 0.0;             // area of `box`: a certified lower bound
+  /// The rectangle in a frame turned by `angle`: the rectangle is `box`
+  /// rotated by `angle` about the origin (`corners()`); for the axis-aligned
+  /// search `angle` is 0 and `box` is the rectangle itself. Empty: none found.
+  Box box;
+  double area = 0.0;             // area of the rectangle: a certified lower bound
   double area_upper = 0.0;       // no rectangle of the shape inside is larger
   std::size_t evaluations = 0;   // branch-and-bound cells evaluated
-  bool verified = false;         // `box` was checked inside the exact region
+  bool verified = false;         // the rectangle was checked inside the exact region
+  double angle = 0.0;            // radians, counter-clockwise, of the side `box.width()`
+  std::size_t orientations = 0;  // orientations searched (free-orientation search only)
+  /// The four corners in the region's frame, counter-clockwise from
+  /// `box.min` turned by `angle`.
+  std::array<Point, 4> corners() const;
 };
 
 /// Free vertical extent of the strip x0 <= x <= x1 in the component: the
@@ -51,6 +60,21 @@ InscribedRectangle largest_inscribed_rectangle(const Component& component, doubl
                                                RectangleShape shape = {},
                                                const Region* region = nullptr,
                                                std::size_t max_evaluations = 4'000'000);
+
+/// Largest rectangle of the shape inside `component` at any orientation
+/// (free aspect or a given aspect ratio; a given width is refused): a branch
+/// and bound over the angle around the axis-aligned search of the component
+/// turned by -angle. A rectangle inside at angle t contains, shrunk by
+/// 1 / (cos d + rho sin d), a rectangle at any angle within d of t (rho: its
+/// aspect ratio, at most diameter^2 / best area), which bounds every
+/// orientation of an angle interval from one search at its middle
+/// (docs/theory/regular_workspace.md). `precision`, `region` and
+/// `max_evaluations` (over all orientations) as above; the result's `angle`
+/// is in [0, pi/2) for a free aspect, [0, pi) for a given aspect ratio.
+InscribedRectangle largest_inscribed_rectangle_any_angle(const Component& component, double precision,
+                                                         RectangleShape shape = {},
+                                                         const Region* region = nullptr,
+                                                         std::size_t max_evaluations = 4'000'000);
 
 /// Does the task polygon (vertices, any orientation) fit inside the region?
 struct TaskFit {
