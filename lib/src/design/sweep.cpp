@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <fstream>
 #include <mutex>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -58,6 +59,9 @@ const std::vector<MetricInfo>& metric_table() {
       {"components", {"components"}},
       {"inscribed_circle", {"inscribed_circle_radius"}},
       {"inscribed_rectangle", {"rectangle_width", "rectangle_height", "rectangle_area", "rectangle_area_upper"}},
+      {"inscribed_rectangle_any_angle",
+       {"turned_rectangle_width", "turned_rectangle_height", "turned_rectangle_angle_deg", "turned_rectangle_area",
+        "turned_rectangle_area_upper"}},
       {"task_fit", {"task_inside", "task_margin", "task_area_outside"}},
       {"limited_area", {"limited_area_lower", "limited_area_upper"}},
       {"real_area", {"real_area_lower", "real_area_upper"}},
@@ -456,15 +460,19 @@ DesignRow evaluate_design(const SweepSpec& spec, std::size_t index, const std::v
           best = std::max(best, geometry::largest_inscribed_circle(c, precision).radius);
         }
         row.metrics[col++] = best;
-      } else if (m == "inscribed_rectangle") {
+      } else if (m == "inscribed_rectangle" || m == "inscribed_rectangle_any_angle") {
+        const bool turned = m == "inscribed_rectangle_any_angle";
         geometry::InscribedRectangle best;
         for (const auto& c : comps) {
-          const auto r = geometry::largest_inscribed_rectangle(c, spec.rectangle_precision, {}, &inside);
+          const auto r = turned ? geometry::largest_inscribed_rectangle_any_angle(c, spec.rectangle_precision, {}, &inside)
+                                : geometry::largest_inscribed_rectangle(c, spec.rectangle_precision, {}, &inside);
+          const double upper = std::max(best.area_upper, r.area_upper);
           if (r.area > best.area) best = r;
-          best.area_upper = std::max(best.area_upper, r.area_upper);
+          best.area_upper = upper;
         }
         row.metrics[col++] = best.box.width();
         row.metrics[col++] = best.box.height();
+        if (turned) row.metrics[col++] = best.angle * 180.0 / std::numbers::pi;
         row.metrics[col++] = best.area;
         row.metrics[col++] = best.area_upper;
       } else if (m == "task_fit") {
