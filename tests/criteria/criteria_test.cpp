@@ -13,6 +13,7 @@
 #include "pkmws/criteria/fields.hpp"
 #include "mechanisms/five_bar/criteria.hpp"
 #include "mechanisms/three_rpr/criteria.hpp"
+#include "support/field_checks.hpp"
 #include "support/mechanisms/five_bar.hpp"
 
 namespace {
@@ -162,44 +163,6 @@ TEST(CriteriaFiveBar, PressureAngleFieldMatchesTheMechanism) {
   }
 }
 
-// Jets by finite differences; interval enclosures contain sampled values.
-template <class Field>
-void check_field(const Field& f, Point p, double h, const Box& box) {
-  const auto j = f.jet(p);
-  auto v = [&](double x, double y) { return f.value({x, y}); };
-  const double gx = (v(p.x + h, p.y) - v(p.x - h, p.y)) / (2 * h);
-  const double gy = (v(p.x, p.y + h) - v(p.x, p.y - h)) / (2 * h);
-  const double hxx = (v(p.x + h, p.y) - 2 * v(p.x, p.y) + v(p.x - h, p.y)) / (h * h);
-  const double hyy = (v(p.x, p.y + h) - 2 * v(p.x, p.y) + v(p.x, p.y - h)) / (h * h);
-  const double hxy = (v(p.x + h, p.y + h) - v(p.x + h, p.y - h) - v(p.x - h, p.y + h) + v(p.x - h, p.y - h)) / (4 * h * h);
-  const double scale1 = 1e-5 * (1.0 + std::abs(j.dx) + std::abs(j.dy));
-  const double scale2 = 1e-3 * (1.0 + std::abs(j.dxx) + std::abs(j.dyy) + std::abs(j.dxy));
-  EXPECT_NEAR(j.v, f.value(p), 1e-12 * (1.0 + std::abs(j.v)));
-  EXPECT_NEAR(j.dx, gx, scale1);
-  EXPECT_NEAR(j.dy, gy, scale1);
-  EXPECT_NEAR(j.dxx, hxx, scale2);
-  EXPECT_NEAR(j.dyy, hyy, scale2);
-  EXPECT_NEAR(j.dxy, hxy, scale2);
-  const auto g = f.grad(p);
-  EXPECT_DOUBLE_EQ(g.dx, j.dx);
-  EXPECT_DOUBLE_EQ(g.dy, j.dy);
-  // Enclosures over the box contain the values, gradients and Hessians at sample points.
-  const auto e = f.enclose(box);
-  const auto jb = f.jet(box);
-  const auto gb = f.grad(box);
-  for (int a = 0; a <= 4; ++a) {
-    for (int b = 0; b <= 4; ++b) {
-      const Point q{box.min.x + box.width() * a / 4.0, box.min.y + box.height() * b / 4.0};
-      const auto jq = f.jet(q);
-      EXPECT_TRUE(e.contains(jq.v));
-      EXPECT_TRUE(jb.v.contains(jq.v));
-      EXPECT_TRUE(jb.dx.contains(jq.dx) && jb.dy.contains(jq.dy));
-      EXPECT_TRUE(gb.dx.contains(jq.dx) && gb.dy.contains(jq.dy));
-      EXPECT_TRUE(jb.dxx.contains(jq.dxx) && jb.dxy.contains(jq.dxy) && jb.dyy.contains(jq.dyy));
-    }
-  }
-}
-
 TEST(CriteriaFields, JetsMatchFiniteDifferencesAndIntervalsEnclose) {
   const auto fb = criteria::five_bar_pressure_angle(dextar(1, -1));
   const auto rpr = criteria::three_rpr_reaction(paminsa(25 * deg), Load{100.0, 5.0}, 0);
@@ -213,16 +176,16 @@ TEST(CriteriaFields, JetsMatchFiniteDifferencesAndIntervalsEnclose) {
     box.min = {p.x - 0.004, p.y - 0.003};
     box.max = {p.x + 0.002, p.y + 0.005};
     if (fb.surrogate->domain(box) == certified::CellState::inside) {
-      check_field(*fb.surrogate, p, 1e-5, box);
+      pkmws::test::check_field(*fb.surrogate, p, 1e-5, box);
       ++checked_fb;
     }
     Box b2 = box;
     if (rpr.surrogate->domain(b2) == certified::CellState::inside) {
-      check_field(*rpa.surrogate, p, 1e-5, b2);
+      pkmws::test::check_field(*rpa.surrogate, p, 1e-5, b2);
       ++checked_rpr;
       // R_i has |.| kinks; where the parts do not vanish it is smooth.
       const auto j = rpr.surrogate->jet(b2);
-      if (j.dxx.finite()) check_field(*rpr.surrogate, p, 1e-5, b2);
+      if (j.dxx.finite()) pkmws::test::check_field(*rpr.surrogate, p, 1e-5, b2);
     }
   }
   EXPECT_GT(checked_fb, 30);

@@ -517,6 +517,7 @@ struct LeafResult {
   std::vector<Box> inside;      // certified in S (by value)
   std::vector<Box> undecided;   // at the depth limit
   std::vector<std::pair<Box, CellTrace>> traced;
+  std::vector<std::pair<Box, CellTrace>> traced_across;  // traced, across W's boundary
   std::uint64_t tests = 0;
 };
 
@@ -524,16 +525,22 @@ void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, co
             int max_depth, double tau, bool trace, Budget& budget, LeafResult& r) {
   if (budget.expired()) { r.undecided.push_back(cell); return; }  // valid: undecided is always allowed
   ++r.tests;
+  const CellState in_w = within_test(cell);
+  if (in_w == CellState::outside) return;  // S ⊆ W
   int active = -1;
   const CellState c = classify(cs, cell, &active);
   if (c == CellState::inside) { r.inside.push_back(cell); return; }
   if (c == CellState::outside) return;
   if (trace && active >= 0) {
     const Constraint& k = cs[static_cast<std::size_t>(active)];
-    if (k.field->domain(cell) == CellState::inside && within_test(cell) == CellState::inside) {
+    // Across W's boundary too, where the field is smooth over the whole cell
+    // (a stroke limit, not a singularity): its area is then clipped to W
+    // exactly (run_once), instead of refining the points where the level
+    // curve meets W's boundary to the depth limit.
+    if (k.field->domain(cell) == CellState::inside) {
       CellTrace t = try_trace(*k.field, k.level, cell, tau);
       if (t.ok) {
-        r.traced.emplace_back(cell, std::move(t));
+        (in_w == CellState::inside ? r.traced : r.traced_across).emplace_back(cell, std::move(t));
         return;
       }
     }
@@ -575,7 +582,10 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
   co.base = options.base;
   co.max_depth = options.cover_depth;
   co.threads = options.threads;
-  const CellCover cover_result = certified::cover([&](const Box& b) { return classify(cs, b); }, co);
+  // S ⊆ W: a box outside W is outside S, whatever the fields (whose domain
+  // may reach beyond W, e.g. past a stroke limit).
+  const CellCover cover_result = certified::cover(
+      [&](const Box& b) { return within_test(b) == CellState::outside ? CellState::outside : classify(cs, b); }, co);
   result.cell_tests = cover_result.tests;
   const std::vector<Box> leaves = leaf_cells(cover_result.undecided, co.window, co.base, co.max_depth);
 
@@ -610,6 +620,7 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
     else straddle_inside.push_back(b);
   }
   std::vector<Box> inner_steps, outer_steps;
+  std::vector<std::vector<Point>> across_inner, across_outer;  // envelope polygons of traced cells across W's boundary
   const double small_cell = co.window.width() / (co.base * std::ldexp(1.0, co.max_depth + 4));
   // Refined cells across W's boundary are small (near the points where the
   // level curve meets W's boundary): counted as undecided (lower 0, upper the
@@ -650,17 +661,41 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
       }
       if (t.curve.size() >= 2) result.curves.push_back(std::move(t.curve));
     }
+    for (auto& [cell, t] : r.traced_across) {
+      ++result.traced_cells;
+      result.curve_points += t.points;
+      envelope_polygons(t, cell, t.sgn < 0, across_inner);
+      envelope_polygons(t, cell, t.sgn > 0, across_outer);
+      if (options.build_regions) {
+        step_boxes(t, cell, true, inner_steps);
+        step_boxes(t, cell, false, outer_steps);
+      }
+      if (t.curve.size() >= 2) result.curves.push_back(std::move(t.curve));
+    }
   }
-  // Cells across W's boundary: exact region operations.
+  // Cells across W's boundary: exact region operations. A traced cell's part
+  // of S lies between W ∩ (the cell's side of its inner envelope) and
+  // W ∩ (the side of its outer envelope).
   double straddle_lower = 0.0;
-  const double straddle_und = 0.0;
   if (!straddle_inside.empty()) straddle_lower = within.intersect(boxes_region(straddle_inside)).area();
+  const auto clipped_area = [&](const std::vector<std::vector<Point>>& polygons) {
+    std::vector<Region> parts;
+    parts.reserve(polygons.size());
+    for (const auto& p : polygons) parts.push_back(polygon(p));
+    return parts.empty() ? 0.0 : within.intersect(Region::unite_all(parts)).area();
+  };
+  if (!across_inner.empty() || !across_outer.empty()) {
+    const double lo = clipped_area(across_inner), hi = clipped_area(across_outer);
+    traced_lower += lo;
+    traced_upper += std::max(lo, hi);
+  }
+  result.inner_polygons.insert(result.inner_polygons.end(), across_inner.begin(), across_inner.end());
   // Sums of positive terms: relative rounding ~ n eps; a margin of 1e-13 of the total.
   const double lower = in_lower + straddle_lower + traced_lower;
-  const double upper = in_lower + straddle_lower + traced_upper + undecided_in + straddle_und;
+  const double upper = in_lower + straddle_lower + traced_upper + undecided_in;
   result.region.area_lower = std::max(0.0, lower * (1.0 - 1e-13));
   result.region.area_upper = upper * (1.0 + 1e-13);
-  result.undecided_area = undecided_in + straddle_und;
+  result.undecided_area = undecided_in;
   result.traced_width = traced_upper - traced_lower;
   result.region.exact = false;
   // Past the deadline the exact regions (seconds to minutes of Boolean

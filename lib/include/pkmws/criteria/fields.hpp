@@ -12,6 +12,8 @@
 //    cos α_i = 1 / |v_B_i| ([Briot]: r_i . v_i = 1), s = |v_B_i|², level = 1 / cos²α.
 //  * biglide velocity ratio V_i / V_y = |∂q_i/∂y| ([Strutynskyi] fig. 8), one field
 //    per leg: s = (∂q_i/∂y)², level(t) = t².
+//  * MOMA: pressure angle and reaction as the five-bar's (cos²ε of the rods);
+//    velocity ratio σ_max(dq/dP), s = σ_max², level(t) = t².
 //
 // Units: lengths in the mechanism's unit, angles in degrees at this interface,
 // forces in N.

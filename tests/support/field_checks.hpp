@@ -1,0 +1,51 @@
+// Checks of a criterion field: jets against finite differences, and interval
+// enclosures over a box that contain the values and derivatives sampled in it.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pkmws/geometry/types.hpp"
+
+namespace pkmws::test {
+
+// Jets by finite differences; interval enclosures contain sampled values.
+template <class Field>
+void check_field(const Field& f, geometry::Point p, double h, const geometry::Box& box) {
+  const auto j = f.jet(p);
+  auto v = [&](double x, double y) { return f.value({x, y}); };
+  const double gx = (v(p.x + h, p.y) - v(p.x - h, p.y)) / (2 * h);
+  const double gy = (v(p.x, p.y + h) - v(p.x, p.y - h)) / (2 * h);
+  const double hxx = (v(p.x + h, p.y) - 2 * v(p.x, p.y) + v(p.x - h, p.y)) / (h * h);
+  const double hyy = (v(p.x, p.y + h) - 2 * v(p.x, p.y) + v(p.x, p.y - h)) / (h * h);
+  const double hxy = (v(p.x + h, p.y + h) - v(p.x + h, p.y - h) - v(p.x - h, p.y + h) + v(p.x - h, p.y - h)) / (4 * h * h);
+  const double scale1 = 1e-5 * (1.0 + std::abs(j.dx) + std::abs(j.dy));
+  const double scale2 = 1e-3 * (1.0 + std::abs(j.dxx) + std::abs(j.dyy) + std::abs(j.dxy));
+  EXPECT_NEAR(j.v, f.value(p), 1e-12 * (1.0 + std::abs(j.v)));
+  EXPECT_NEAR(j.dx, gx, scale1);
+  EXPECT_NEAR(j.dy, gy, scale1);
+  EXPECT_NEAR(j.dxx, hxx, scale2);
+  EXPECT_NEAR(j.dyy, hyy, scale2);
+  EXPECT_NEAR(j.dxy, hxy, scale2);
+  const auto g = f.grad(p);
+  EXPECT_DOUBLE_EQ(g.dx, j.dx);
+  EXPECT_DOUBLE_EQ(g.dy, j.dy);
+  // Enclosures over the box contain the values, gradients and Hessians at sample points.
+  const auto e = f.enclose(box);
+  const auto jb = f.jet(box);
+  const auto gb = f.grad(box);
+  for (int a = 0; a <= 4; ++a) {
+    for (int b = 0; b <= 4; ++b) {
+      const geometry::Point q{box.min.x + box.width() * a / 4.0, box.min.y + box.height() * b / 4.0};
+      const auto jq = f.jet(q);
+      EXPECT_TRUE(e.contains(jq.v));
+      EXPECT_TRUE(jb.v.contains(jq.v));
+      EXPECT_TRUE(jb.dx.contains(jq.dx) && jb.dy.contains(jq.dy));
+      EXPECT_TRUE(gb.dx.contains(jq.dx) && gb.dy.contains(jq.dy));
+      EXPECT_TRUE(jb.dxx.contains(jq.dxx) && jb.dxy.contains(jq.dxy) && jb.dyy.contains(jq.dyy));
+    }
+  }
+}
+
+}  // namespace pkmws::test
