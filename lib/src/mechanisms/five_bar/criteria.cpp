@@ -20,10 +20,12 @@ struct FiveBarCosEps {
   std::array<Point, 2> base;
   std::array<double, 2> l1, l2, s;
   std::array<double, 2> r_out2, r_in2;
+  std::array<std::optional<std::array<double, 2>>, 2> limits;  // crank angles (explicit or from a Π-joint)
 
   explicit FiveBarCosEps(const mechanisms::FiveBar& m) {
     for (std::size_t i = 0; i < 2; ++i) {
       const auto& leg = m.legs()[i];
+      limits[i] = m.crank_limits(static_cast<int>(i));
       base[i] = leg.base;
       l1[i] = leg.proximal;
       l2[i] = leg.distal;
@@ -64,6 +66,59 @@ struct FiveBarCosEps {
     }
     return inside ? CellState::inside : CellState::undecided;
   }
+  // Box ⊆ workspace: inside both annuli and, with crank limits, every crank
+  // direction B_i - A_i = a w + s b J w over the box (interval arithmetic)
+  // inside the allowed sector of angles.
+  CellState within(const Box& box) const {
+    const CellState annuli = domain(box);
+    if (annuli == CellState::outside) return annuli;
+    bool inside = annuli == CellState::inside;
+    const Interval x(box.min.x, box.max.x), y(box.min.y, box.max.y);
+    for (std::size_t i = 0; i < 2; ++i) {
+      if (!limits[i]) continue;
+      const Interval p(l1[i]), q(l2[i]);
+      const Interval wx = x - base[i].x, wy = y - base[i].y;
+      const Interval r2 = certified::sqr(wx) + certified::sqr(wy);
+      if (!(r2.lo > 0.0)) return CellState::undecided;
+      const Interval inv2r2 = 0.5 / r2;
+      const Interval a = 0.5 + (p - q) * (p + q) * inv2r2;
+      const Interval d = (certified::sqr(p + q) - r2) * (r2 - certified::sqr(p - q));
+      const Interval b = certified::sqrt(certified::max(d, 0.0)) * inv2r2;
+      const Interval dx = a * wx - s[i] * (b * wy), dy = a * wy + s[i] * (b * wx);
+      const CellState sector = in_sector(dx, dy, (*limits[i])[0], (*limits[i])[1]);
+      if (sector == CellState::outside) return sector;
+      inside = inside && sector == CellState::inside;
+    }
+    return inside ? CellState::inside : CellState::undecided;
+  }
+  // Position of the directions of the vector box (dx, dy) against the angle
+  // sector [lo, hi] (hi - lo <= 2 pi): the box's extreme directions are at its
+  // corners (when it misses the origin); atan2's rounding is covered by a margin.
+  static CellState in_sector(const Interval& dx, const Interval& dy, double lo, double hi) {
+    if (dx.contains_zero() && dy.contains_zero()) return CellState::undecided;
+    const double ref = std::atan2(0.5 * (dy.lo + dy.hi), 0.5 * (dx.lo + dx.hi));
+    double amin = inf_angle, amax = -inf_angle;
+    for (double cx : {dx.lo, dx.hi}) {
+      for (double cy : {dy.lo, dy.hi}) {
+        double t = std::atan2(cy, cx);
+        while (t > ref + pi) t -= 2 * pi;
+        while (t <= ref - pi) t += 2 * pi;
+        amin = std::min(amin, t);
+        amax = std::max(amax, t);
+      }
+    }
+    constexpr double margin = 1e-12;
+    amin -= margin;
+    amax += margin;
+    // Shift the directions' range next to the sector.
+    const double shift = 2 * pi * std::floor((amin - lo) / (2 * pi));
+    amin -= shift;
+    amax -= shift;  // now lo <= amin < lo + 2 pi
+    if (amax <= hi) return CellState::inside;
+    if (amin > hi && amax < lo + 2 * pi) return CellState::outside;
+    return CellState::undecided;
+  }
+  static constexpr double inf_angle = std::numeric_limits<double>::infinity();
 };
 
 // ---------------------------------------------------------------------------
@@ -100,7 +155,7 @@ CriterionField five_bar_pressure_angle(const mechanisms::FiveBar& mechanism) {
     return std::sin(a) * std::sin(a);
   };
   c.value = [impl](Point p) { return five_bar_alpha_deg(impl, p); };
-  c.within_test = [impl](const Box& b) { return impl.domain(b); };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
   return c;
 }
 
@@ -129,7 +184,8 @@ CriterionField five_bar_reaction(const mechanisms::FiveBar& mechanism, double fo
 
 namespace {
 
-// Capability criteria::CriterionFields of a five-bar with freely rotating cranks.
+// Capability criteria::CriterionFields of a five-bar (crank limits and Π-joint
+// drives bound the workspace W, which the level sets are restricted to).
 class FiveBarFields final : public CriterionFields {
  public:
   explicit FiveBarFields(const mechanisms::FiveBar* m) : m_(m) {}
@@ -137,12 +193,6 @@ class FiveBarFields final : public CriterionFields {
                                      const std::vector<int>& /*reaction_legs*/) const override {
     if (name == "velocity_ratio") {
       throw std::invalid_argument("velocity-ratio level sets are implemented for the biglide ([Strutynskyi]), not five_bar");
-    }
-    for (int i = 0; i < 2; ++i) {
-      if (m_->crank_limits(i)) {
-        throw std::invalid_argument("level sets of five-bars with crank limits are not supported "
-                                    "(the criterion fields assume freely rotating cranks)");
-      }
     }
     if (name == "pressure_angle") return {five_bar_pressure_angle(*m_)};
     if (!criteria.load) throw std::invalid_argument("the reaction criterion needs criteria.load");
