@@ -48,7 +48,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
                   "inside (inner) or around (outer) the enclosure")
       ->check(CLI::IsMember({"inner", "outer"}));
   sub->add_option("--criterion", a->criterion,
-                  "With --levels: export the bands of a criterion (pressure_angle, reaction, velocity_ratio) "
+                  "With --levels: export the bands of a criterion (pressure_angle, reaction, velocity_ratio, condition_number) "
                   "instead of the workspace: svg = band figure, csv = traced level curves");
   sub->add_option("--levels", a->levels, "Increasing thresholds of --criterion, e.g. 20,40,60,80");
   add_max_time_option(sub, a->max_time);

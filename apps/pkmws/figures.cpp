@@ -20,6 +20,7 @@ std::string limits_text(const Json& criteria) {
     if (name == "pressure_angle") std::snprintf(buf, sizeof buf, "pressure angle \u2264 %g\u00b0", t);
     else if (name == "reaction") std::snprintf(buf, sizeof buf, "reaction \u2264 %g N", t);
     else if (name == "velocity_ratio") std::snprintf(buf, sizeof buf, "velocity ratio \u2264 %g", t);
+    else if (name == "condition_number") std::snprintf(buf, sizeof buf, "condition number \u2264 %g", t);
     else std::snprintf(buf, sizeof buf, "%s \u2264 %g", name.c_str(), t);
     out += (out.empty() ? "" : ", ") + std::string(buf);
   }

@@ -200,11 +200,14 @@ TEST(CriteriaFields, FileCriteriaAndErrors) {
   EXPECT_THROW(criteria::fields_for(f, "velocity"), InputError);
   EXPECT_THROW(criteria::fields_for(f, "reaction"), InputError);  // no load
   EXPECT_EQ(criteria::fields_for(f, "pressure_angle").size(), 1u);
-  // A velocity-ratio limit is read, but the five-bar has no such level set.
+  // Velocity-ratio and condition-number limits are read, in that order.
   f.criteria.max_velocity_ratio = 2.0;
-  ASSERT_EQ(criteria::file_limits(f).size(), 1u);
+  f.criteria.max_condition_number = 3.0;
+  ASSERT_EQ(criteria::file_limits(f).size(), 2u);
   EXPECT_EQ(criteria::file_limits(f).front().name, "velocity_ratio");
-  EXPECT_THROW(criteria::fields_for(f, "velocity_ratio"), InputError);
+  EXPECT_EQ(criteria::file_limits(f).back().name, "condition_number");
+  EXPECT_EQ(criteria::fields_for(f, "velocity_ratio").size(), 1u);
+  EXPECT_EQ(criteria::fields_for(f, "condition_number").size(), 1u);
 }
 
 }  // namespace

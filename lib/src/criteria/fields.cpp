@@ -10,8 +10,9 @@
 namespace pkmws::criteria {
 
 std::vector<CriterionField> fields_for(const mechanisms::Design& file, const std::string& name) {
-  if (name != "pressure_angle" && name != "reaction" && name != "velocity_ratio") {
-    throw InputError("unknown criterion \"" + name + "\" (expected pressure_angle, reaction or velocity_ratio)");
+  if (name != "pressure_angle" && name != "reaction" && name != "velocity_ratio" && name != "condition_number") {
+    throw InputError("unknown criterion \"" + name +
+                     "\" (expected pressure_angle, reaction, velocity_ratio or condition_number)");
   }
   const auto capability = file.model->capability<CriterionFields>();
   if (!capability) throw InputError(file.path + ": certified level sets: " + capability.reason());
@@ -28,6 +29,7 @@ std::vector<Limit> file_limits(const mechanisms::Design& file) {
   if (c.max_pressure_angle_deg) out.push_back({"pressure_angle", *c.max_pressure_angle_deg});
   if (c.max_reaction_N) out.push_back({"reaction", *c.max_reaction_N});
   if (c.max_velocity_ratio) out.push_back({"velocity_ratio", *c.max_velocity_ratio});
+  if (c.max_condition_number) out.push_back({"condition_number", *c.max_condition_number});
   return out;
 }
 

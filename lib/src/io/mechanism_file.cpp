@@ -1,6 +1,7 @@
 #include "pkmws/io/mechanism_file.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -41,7 +42,8 @@ mechanisms::Criteria read_criteria(detail::JsonReader& doc, std::vector<int>& re
   mechanisms::Criteria c;
   if (!doc.has("criteria")) return c;
   auto r = doc.object("criteria");
-  r.declare_fields({"max_pressure_angle_deg", "max_reaction_N", "load", "max_velocity_ratio", "reaction_legs"});
+  r.declare_fields({"max_pressure_angle_deg", "max_reaction_N", "load", "max_velocity_ratio", "max_condition_number",
+                    "reaction_legs"});
   if (r.has("reaction_legs")) {
     const auto& v = r.raw("reaction_legs");
     if (!v.is_array() || v.empty()) r.fail("reaction_legs", "expected a non-empty list of leg numbers (1-based)");
@@ -59,6 +61,11 @@ mechanisms::Criteria read_criteria(detail::JsonReader& doc, std::vector<int>& re
   }
   c.max_reaction_N = r.optional_positive("max_reaction_N");
   c.max_velocity_ratio = r.optional_positive("max_velocity_ratio");
+  if (r.has("max_condition_number")) {
+    const double k = r.number("max_condition_number");
+    if (!(k >= 1.0) || !std::isfinite(k)) r.fail("max_condition_number", "must be at least 1 (a condition number is >= 1)");
+    c.max_condition_number = k;
+  }
   if (r.has("load")) {
     auto l = r.object("load");
     l.declare_fields({"force_N", "moment_Nm"});

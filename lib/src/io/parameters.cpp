@@ -84,7 +84,7 @@ namespace {
 // tests/python/test_parameters.py checks them against those tables).
 std::string unit_of(const std::string& key, const std::string& length) {
   static const std::set<std::string> dimensionless = {"branch", "working_mode", "sense", "reaction_legs", "k",
-                                                      "max_velocity_ratio", "efficiency"};
+                                                      "max_velocity_ratio", "max_condition_number", "efficiency"};
   auto ends = [&](const char* suffix) {
     const std::string s(suffix);
     return key.size() >= s.size() && key.compare(key.size() - s.size(), s.size(), s) == 0;

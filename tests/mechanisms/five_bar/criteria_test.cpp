@@ -11,6 +11,7 @@
 #include "mechanisms/five_bar/criteria.hpp"
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/mechanism_file.hpp"
+#include "support/field_checks.hpp"
 #include "support/fixtures.hpp"
 
 namespace {
@@ -90,6 +91,52 @@ TEST(FiveBarCriteria, CrankLimitedAreaAgainstAGridAndTheFreeCranks) {
   const auto rf = criteria::limited_workspace(free, {{"pressure_angle", alpha}}, o);
   EXPECT_LT(r.region.area_upper, rf.region.area_lower);
   EXPECT_GT(r.region.area_lower, 0.1 * rf.region.area_upper);
+}
+
+TEST(FiveBarCriteria, VelocityRatioAndConditionNumberAgreeWithTheEvaluation) {
+  const auto f = io::load_mechanism(test::dataset("five_bar_dextar_pm"));
+  const auto& m = *f.model;
+  const auto vr = criteria::fields_for(f, "velocity_ratio").at(0);
+  const auto kc = criteria::fields_for(f, "condition_number").at(0);
+  const Box bb = m.bounds();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> ux(bb.min.x, bb.max.x), uy(bb.min.y, bb.max.y);
+  int checked = 0;
+  for (int n = 0; n < 5000 && checked < 300; ++n) {
+    const Point p{ux(rng), uy(rng)};
+    const auto e = m.evaluate({p.x, p.y, 0.0}, {});
+    if (!e.front().reachable || e.front().singular) continue;
+    const double ratio = *e.front().velocity_ratio, kappa = e.front().condition_number;
+    if (!(ratio < 1e3 && kappa < 1e3)) continue;  // near a singularity
+    EXPECT_NEAR(vr.surrogate->value(p), ratio * ratio, 1e-9 * ratio * ratio);
+    for (double t : {1.5, 3.0, 10.0}) {
+      if (std::abs(kappa - t) > 1e-9 * t) {
+        EXPECT_EQ(kappa <= t, kc.surrogate->value(p) <= kc.level(t));
+      }
+    }
+    const Box box{{p.x - 2e-4, p.y - 1e-4}, {p.x + 1e-4, p.y + 2e-4}};
+    if (vr.surrogate->domain(box) == certified::CellState::inside) test::check_field(*vr.surrogate, p, 1e-6, box);
+    if (kc.surrogate->domain(box) == certified::CellState::inside) test::check_field(*kc.surrogate, p, 1e-6, box);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 300);
+  // The certified κ <= 3 area against a grid through the evaluation (at the
+  // base joints, where every level curve ends, the bounds narrow slowly: 1e-3).
+  certified::LevelSetOptions o;
+  o.relative_tolerance = 1e-3;
+  const auto r = criteria::limited_workspace(f, {{"condition_number", 3.0}}, o);
+  EXPECT_LE(r.region.width(), 1e-3 * r.region.area_upper);
+  const int n = 500;
+  const double dx = bb.width() / n, dy = bb.height() / n;
+  long count = 0;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const auto e = m.evaluate({bb.min.x + (i + 0.5) * dx, bb.min.y + (j + 0.5) * dy, 0.0}, {});
+      count += e.front().reachable && e.front().condition_number <= 3.0 ? 1 : 0;
+    }
+  }
+  const double grid = static_cast<double>(count) * dx * dy;
+  EXPECT_NEAR(grid, 0.5 * (r.region.area_lower + r.region.area_upper), 5e-3 * grid);
 }
 
 TEST(FiveBarCriteria, PiJointDrivenFiveBarAgainstAGrid) {

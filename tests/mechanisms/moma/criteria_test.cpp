@@ -35,6 +35,7 @@ TEST(MomaCriteria, SurrogatesAgreeWithTheEvaluationAndTheirDerivatives) {
     const auto pa = criteria::moma_pressure_angle(m);
     const auto vr = criteria::moma_velocity_ratio(m);
     const auto rr = criteria::moma_reaction(m, 100.0);
+    const auto kc = criteria::moma_condition_number(m);
     const Box bb = m.bounds();
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> ux(bb.min.x, bb.max.x), uy(bb.min.y, bb.max.y);
@@ -49,11 +50,20 @@ TEST(MomaCriteria, SurrogatesAgreeWithTheEvaluationAndTheirDerivatives) {
       EXPECT_NEAR(vr.surrogate->value(p), ratio * ratio, 1e-10 * ratio * ratio);
       EXPECT_NEAR(pa.value(p), alpha, 1e-12);
       EXPECT_NEAR(rr.value(p), 100.0 / std::cos(alpha * kDeg), 1e-9 * rr.value(p));
+      // κ <= t  <=>  -(det / F)² <= -1 / (t + 1/t)² against the SVD's κ.
+      const double kappa = e.front().condition_number;
+      for (double t : {2.3, 2.5, 3.0}) {
+        if (std::abs(kappa - t) > 1e-9 * t) {
+          EXPECT_EQ(kappa <= t, kc.surrogate->value(p) <= kc.level(t));
+        }
+      }
+      EXPECT_NEAR(kc.value(p), kappa, 1e-12 * kappa);
       // The sub-level sets agree with the criteria: α <= t  <=>  s <= level(t).
       for (double t : {25.0, 35.0, 45.0}) EXPECT_EQ(alpha <= t, pa.surrogate->value(p) <= pa.level(t));
       const Box box{{p.x - 0.4, p.y - 0.3}, {p.x + 0.2, p.y + 0.5}};
       if (pa.surrogate->domain(box) == certified::CellState::inside) test::check_field(*pa.surrogate, p, 1e-3, box);
       if (vr.surrogate->domain(box) == certified::CellState::inside) test::check_field(*vr.surrogate, p, 1e-3, box);
+      if (kc.surrogate->domain(box) == certified::CellState::inside) test::check_field(*kc.surrogate, p, 1e-3, box);
       // The box test against the workspace is conservative.
       if (pa.within_test(box) == certified::CellState::inside) {
         for (const Point q : {box.min, box.max, Point{box.min.x, box.max.y}, Point{box.max.x, box.min.y}}) {
@@ -91,6 +101,29 @@ TEST(MomaCriteria, ParallelGuidesGiveVerticalVelocityBands) {
   EXPECT_GE(r.region.area_upper, exact - 1e-9);
   EXPECT_LE(r.region.width(), 1e-9 * exact);
   EXPECT_EQ(r.detail.undecided_cells, 0u);  // every cell along the lines traced, also across W's boundary
+}
+
+TEST(MomaCriteria, ParallelGuidesGiveVerticalConditionBands) {
+  // As for the velocity ratio: κ of M1 depends on x only; it stays near its
+  // minimum 2.29 for |x| < 60 and grows beyond, so {κ <= 2.5} = W ∩ {|x| <= x*}.
+  const auto f = moma("moma_m1_g0_l250");
+  const auto& m = as_moma(f);
+  const double t = 2.5;
+  const auto kappa_at = [&](double x) { return m.evaluate({x, -300.0, 0.0}, {}).front().condition_number; };
+  double lo = 40.0, hi = 150.0;
+  ASSERT_LT(kappa_at(lo), t);
+  ASSERT_GT(kappa_at(hi), t);
+  for (int k = 0; k < 200 && hi - lo > 1e-13; ++k) (kappa_at(0.5 * (lo + hi)) <= t ? lo : hi) = 0.5 * (lo + hi);
+  for (double x = 0.0; x < lo; x += 1.0) ASSERT_LT(kappa_at(x), t);
+  const geometry::Region w = m.workspace();
+  const Box bb = w.bbox();
+  const double exact = w.intersect(geometry::rectangle({{-lo, bb.min.y - 1}, {lo, bb.max.y + 1}})).area();
+  certified::LevelSetOptions o;
+  o.relative_tolerance = 1e-9;
+  const auto r = criteria::limited_workspace(f, {{"condition_number", t}}, o);
+  EXPECT_LE(r.region.area_lower, exact + 1e-9);
+  EXPECT_GE(r.region.area_upper, exact - 1e-9);
+  EXPECT_LE(r.region.width(), 1e-9 * exact);
 }
 
 TEST(MomaCriteria, PressureAngleAndReactionAgainstADenseGrid) {

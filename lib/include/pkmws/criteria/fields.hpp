@@ -12,8 +12,9 @@
 //    cos α_i = 1 / |v_B_i| ([Briot]: r_i . v_i = 1), s = |v_B_i|², level = 1 / cos²α.
 //  * biglide velocity ratio V_i / V_y = |∂q_i/∂y| ([Strutynskyi] fig. 8), one field
 //    per leg: s = (∂q_i/∂y)², level(t) = t².
-//  * MOMA: pressure angle and reaction as the five-bar's (cos²ε of the rods);
-//    velocity ratio σ_max(dq/dP), s = σ_max², level(t) = t².
+//  * MOMA: pressure angle and reaction as the five-bar's (cos²ε of the rods).
+//  * MOMA and five-bar: velocity ratio σ_max(dq/dP), s = σ_max², level(t) = t²;
+//    condition number κ of dq/dP, s = -(det / F)², level(t) = -1 / (t + 1/t)².
 //
 // Units: lengths in the mechanism's unit, angles in degrees at this interface,
 // forces in N.
@@ -58,10 +59,10 @@ struct CriterionField {
 /// Each mechanism module implements it beside its kinematics.
 struct CriterionFields {
   static constexpr std::string_view capability_name =
-      "certified criterion fields (level sets of the pressure angle, reaction or velocity ratio)";
+      "certified criterion fields (level sets of the pressure angle, reaction, velocity ratio or condition number)";
   virtual ~CriterionFields() = default;
   /// The fields of criterion `name` ("pressure_angle", "reaction",
-  /// "velocity_ratio") for the file's criteria and reaction legs (1-based,
+  /// "velocity_ratio", "condition_number") for the file's criteria and reaction legs (1-based,
   /// empty: every leg); throws std::invalid_argument with a one-line reason
   /// when this mechanism cannot give them.
   virtual std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& criteria,

@@ -67,8 +67,9 @@ struct Criteria {
   std::optional<double> max_reaction_N;
   std::optional<Load> load;
   std::optional<double> max_velocity_ratio;
+  std::optional<double> max_condition_number;
   bool any() const {
-    return max_pressure_angle_deg || max_reaction_N || max_velocity_ratio;
+    return max_pressure_angle_deg || max_reaction_N || max_velocity_ratio || max_condition_number;
   }
 };
 

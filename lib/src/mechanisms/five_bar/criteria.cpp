@@ -55,7 +55,36 @@ struct FiveBarCosEps {
     }
     return (ux[0] * ux[1] + uy[0] * uy[1]) / (T(l2[0]) * T(l2[1]));
   }
-  template <class T> T eval(const T& x, const T& y) const { return certified::sqr(cos_eps(x, y)); }
+  // Rows of dq/dC: differentiating |C - B_i|² = l_i2² with B_i - A_i = w - u_i
+  // gives dq_i = u_i . dC / (w_i x u_i) (the eval's B⁻¹A, docs/theory/five_bar.md).
+  template <class T> Rows2<T> rows(const T& x, const T& y) const {
+    using certified::max;
+    using certified::sqr;
+    using certified::sqrt;
+    using std::sqrt;
+    std::array<T, 2> mx, my;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const T p = T(l1[i]), q = T(l2[i]);
+      const T wx = x - base[i].x, wy = y - base[i].y;
+      const T r2 = sqr(wx) + sqr(wy);
+      const T inv2r2 = 0.5 / r2;
+      const T one_minus_a = 0.5 - (p - q) * (p + q) * inv2r2;
+      const T d = (sqr(p + q) - r2) * (r2 - sqr(p - q));
+      const T b = sqrt(max(d, 0.0)) * inv2r2;
+      const T ux = one_minus_a * wx + s[i] * (b * wy), uy = one_minus_a * wy - s[i] * (b * wx);
+      const T cross = wx * uy - wy * ux;
+      mx[i] = ux / cross;
+      my[i] = uy / cross;
+    }
+    return {mx[0], my[0], mx[1], my[1]};
+  }
+  enum class What { cos2eps, ratio2, kappa };
+  What what = What::cos2eps;
+  template <class T> T eval(const T& x, const T& y) const {
+    if (what == What::ratio2) return sigma_max2(rows(x, y));
+    if (what == What::kappa) return kappa_surrogate(rows(x, y));
+    return certified::sqr(cos_eps(x, y));
+  }
   // Smooth where every leg is strictly inside its annulus (D > 0, r > 0).
   CellState domain(const Box& b) const {
     bool inside = true;
@@ -64,13 +93,19 @@ struct FiveBarCosEps {
       if (r2.lo > r_out2[i] || r2.hi < r_in2[i]) return CellState::outside;
       inside = inside && r2.hi < r_out2[i] && r2.lo > r_in2[i] && r2.lo > 0.0;
     }
+    if (inside && what == What::ratio2 &&
+        !detail::distinct_singular_values(rows(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y)))) {
+      return CellState::undecided;  // near an isotropic point
+    }
     return inside ? CellState::inside : CellState::undecided;
   }
   // Box ⊆ workspace: inside both annuli and, with crank limits, every crank
   // direction B_i - A_i = a w + s b J w over the box (interval arithmetic)
   // inside the allowed sector of angles.
   CellState within(const Box& box) const {
-    const CellState annuli = domain(box);
+    FiveBarCosEps plain = *this;
+    plain.what = What::cos2eps;  // the annuli alone (no smoothness condition of the field)
+    const CellState annuli = plain.domain(box);
     if (annuli == CellState::outside) return annuli;
     bool inside = annuli == CellState::inside;
     const Interval x(box.min.x, box.max.x), y(box.min.y, box.max.y);
@@ -182,6 +217,43 @@ CriterionField five_bar_reaction(const mechanisms::FiveBar& mechanism, double fo
 }
 
 
+CriterionField five_bar_velocity_ratio(const mechanisms::FiveBar& mechanism) {
+  FiveBarCosEps impl(mechanism);
+  impl.what = FiveBarCosEps::What::ratio2;
+  CriterionField c;
+  c.name = "velocity_ratio";
+  c.unit = "|dq|/|dP|";
+  c.key = "five_bar.vratio";
+  c.surrogate = std::make_shared<certified::TemplateField<FiveBarCosEps>>(impl);
+  c.level = [](double ratio) { return ratio * ratio; };
+  const mechanisms::FiveBar* m = &mechanism;
+  c.value = [m](Point p) {
+    const auto e = m->evaluate({p.x, p.y, 0.0}, {});
+    return !e.empty() && e.front().reachable && e.front().velocity_ratio ? *e.front().velocity_ratio : nan;
+  };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
+  return c;
+}
+
+CriterionField five_bar_condition_number(const mechanisms::FiveBar& mechanism) {
+  FiveBarCosEps impl(mechanism);
+  impl.what = FiveBarCosEps::What::kappa;
+  CriterionField c;
+  c.name = "condition_number";
+  c.unit = "";  // dimensionless
+  c.key = "five_bar.kappa";
+  c.threshold_min = 1.0;
+  c.surrogate = std::make_shared<certified::TemplateField<FiveBarCosEps>>(impl);
+  c.level = kappa_level;
+  const mechanisms::FiveBar* m = &mechanism;
+  c.value = [m](Point p) {
+    const auto e = m->evaluate({p.x, p.y, 0.0}, {});
+    return !e.empty() && e.front().reachable ? e.front().condition_number : nan;
+  };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
+  return c;
+}
+
 namespace {
 
 // Capability criteria::CriterionFields of a five-bar (crank limits and Π-joint
@@ -191,9 +263,8 @@ class FiveBarFields final : public CriterionFields {
   explicit FiveBarFields(const mechanisms::FiveBar* m) : m_(m) {}
   std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& criteria,
                                      const std::vector<int>& /*reaction_legs*/) const override {
-    if (name == "velocity_ratio") {
-      throw std::invalid_argument("velocity-ratio level sets are implemented for the biglide ([Strutynskyi]), not five_bar");
-    }
+    if (name == "velocity_ratio") return {five_bar_velocity_ratio(*m_)};
+    if (name == "condition_number") return {five_bar_condition_number(*m_)};
     if (name == "pressure_angle") return {five_bar_pressure_angle(*m_)};
     if (!criteria.load) throw std::invalid_argument("the reaction criterion needs criteria.load");
     return {five_bar_reaction(*m_, criteria.load->force_N)};

@@ -1,6 +1,6 @@
-// MOMA criterion fields: the rods' pressure angle and reaction as cos²ε, and
-// the velocity ratio as the largest singular value of dq/dP, from the
-// closed-form inverse kinematics (docs/theory/level_sets.md, MOMA).
+// MOMA criterion fields: the rods' pressure angle and reaction as cos²ε, the
+// velocity ratio (largest singular value of dq/dP) and the condition number of
+// dq/dP, from the closed-form inverse kinematics (docs/theory/level_sets.md, MOMA).
 #include "mechanisms/moma/criteria.hpp"
 
 #include "criteria/support.hpp"
@@ -16,11 +16,12 @@ namespace {
 // eq. 3 gives dp_i = (P - S_i).dP / ((P - S_i).a_i) (docs/theory/moma.md,
 // Jacobians): row i of dq/dP is m_i = a_i - b_i c_i n_i with c_i = (n_i.w_i) / r_i.
 struct MomaTransmission {
+  enum class What { cos2eps, ratio2, kappa };  // cos²ε, σ_max² of dq/dP, -(det / F)² of dq/dP
   std::array<Point, 2> ref, a, n;
   std::array<double, 2> l, b, stroke_lo, stroke_hi;
-  bool velocity = false;  // eval() gives σ_max² of dq/dP instead of cos²ε
+  What what = What::cos2eps;
 
-  MomaTransmission(const mechanisms::Moma& m, bool velocity_ratio) : velocity(velocity_ratio) {
+  MomaTransmission(const mechanisms::Moma& m, What w) : what(w) {
     for (int i = 0; i < 2; ++i) {
       const auto& leg = m.legs()[static_cast<std::size_t>(i)];
       const std::size_t k = static_cast<std::size_t>(i);
@@ -59,10 +60,9 @@ struct MomaTransmission {
     }
     return (ux[0] * ux[1] + uy[0] * uy[1]) / (T(l[0]) * T(l[1]));
   }
-  // σ_max² of M = dq/dP (rows m_i): (F + sqrt(F² - 4 det²)) / 2, F = |M|²_F.
-  template <class T> T ratio2(const T& x, const T& y) const {
+  // Rows m_i = a_i - b_i c_i n_i of dq/dP.
+  template <class T> Rows2<T> rows(const T& x, const T& y) const {
     using certified::max;
-    using certified::sqr;
     using certified::sqrt;
     using std::sqrt;
     std::array<T, 2> mx, my;
@@ -72,16 +72,15 @@ struct MomaTransmission {
       mx[i] = a[i].x - b[i] * (c * n[i].x);
       my[i] = a[i].y - b[i] * (c * n[i].y);
     }
-    const T f = sqr(mx[0]) + sqr(my[0]) + sqr(mx[1]) + sqr(my[1]);
-    const T det = mx[0] * my[1] - my[0] * mx[1];
-    return 0.5 * (f + sqrt(max((f - 2.0 * det) * (f + 2.0 * det), 0.0)));
+    return {mx[0], my[0], mx[1], my[1]};
   }
   template <class T> T eval(const T& x, const T& y) const {
-    return velocity ? ratio2(x, y) : certified::sqr(cos_eps(x, y));
+    if (what == What::ratio2) return sigma_max2(rows(x, y));
+    if (what == What::kappa) return kappa_surrogate(rows(x, y));
+    return certified::sqr(cos_eps(x, y));
   }
   // Smooth where both rods are strictly off the guides' normals (r_i > 0);
-  // σ_max² also needs distinct singular values (F² - 4 det² > 0), which the
-  // interval evaluation checks.
+  // σ_max² also needs distinct singular values.
   CellState domain(const Box& box) const {
     const Interval x(box.min.x, box.max.x), y(box.min.y, box.max.y);
     bool inside = true;
@@ -90,17 +89,8 @@ struct MomaTransmission {
       if (g.r2.hi < 0.0) return CellState::outside;
       inside = inside && g.r2.lo > 0.0;
     }
-    if (inside && velocity) {
-      std::array<Interval, 2> mx, my;
-      for (std::size_t i = 0; i < 2; ++i) {
-        const Leg<Interval> g = leg(i, x, y);
-        const Interval c = g.across / certified::sqrt(g.r2);
-        mx[i] = Interval(a[i].x) - b[i] * (c * n[i].x);
-        my[i] = Interval(a[i].y) - b[i] * (c * n[i].y);
-      }
-      const Interval f = certified::sqr(mx[0]) + certified::sqr(my[0]) + certified::sqr(mx[1]) + certified::sqr(my[1]);
-      const Interval det = mx[0] * my[1] - my[0] * mx[1];
-      if (!(((f - 2.0 * det) * (f + 2.0 * det)).lo > 0.0)) return CellState::undecided;  // near an isotropic point
+    if (inside && what == What::ratio2 && !detail::distinct_singular_values(rows(x, y))) {
+      return CellState::undecided;  // near an isotropic point
     }
     return inside ? CellState::inside : CellState::undecided;
   }
@@ -128,7 +118,7 @@ const mechanisms::Evaluation* own_mode(const std::vector<mechanisms::Evaluation>
 }  // namespace
 
 CriterionField moma_pressure_angle(const mechanisms::Moma& mechanism) {
-  const MomaTransmission impl(mechanism, false);
+  const MomaTransmission impl(mechanism, MomaTransmission::What::cos2eps);
   CriterionField c;
   c.name = "pressure_angle";
   c.unit = "deg";
@@ -173,7 +163,7 @@ CriterionField moma_reaction(const mechanisms::Moma& mechanism, double force_N) 
 }
 
 CriterionField moma_velocity_ratio(const mechanisms::Moma& mechanism) {
-  const MomaTransmission impl(mechanism, true);
+  const MomaTransmission impl(mechanism, MomaTransmission::What::ratio2);
   CriterionField c;
   c.name = "velocity_ratio";
   c.unit = "|dq|/|dP|";
@@ -190,6 +180,25 @@ CriterionField moma_velocity_ratio(const mechanisms::Moma& mechanism) {
   return c;
 }
 
+CriterionField moma_condition_number(const mechanisms::Moma& mechanism) {
+  const MomaTransmission impl(mechanism, MomaTransmission::What::kappa);
+  CriterionField c;
+  c.name = "condition_number";
+  c.unit = "";  // dimensionless
+  c.key = "moma.kappa";
+  c.threshold_min = 1.0;
+  c.surrogate = std::make_shared<certified::TemplateField<MomaTransmission>>(impl);
+  c.level = kappa_level;
+  const mechanisms::Moma* m = &mechanism;
+  c.value = [m](Point p) {
+    const auto e = m->evaluate({p.x, p.y, 0.0}, {});
+    const auto* own = own_mode(e);
+    return own ? own->condition_number : nan;
+  };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
+  return c;
+}
+
 namespace {
 
 // Capability criteria::CriterionFields of the MOMA.
@@ -200,6 +209,7 @@ class MomaFields final : public CriterionFields {
                                      const std::vector<int>& /*reaction_legs*/) const override {
     if (name == "pressure_angle") return {moma_pressure_angle(*m_)};
     if (name == "velocity_ratio") return {moma_velocity_ratio(*m_)};
+    if (name == "condition_number") return {moma_condition_number(*m_)};
     if (!criteria.load) throw std::invalid_argument("the reaction criterion needs criteria.load");
     return {moma_reaction(*m_, criteria.load->force_N)};
   }

@@ -15,6 +15,8 @@ CriterionField moma_reaction(const mechanisms::Moma& mechanism, double force_N);
 /// Velocity ratio: the largest singular value of dq/dP (worst-case |dq| / |dP|,
 /// as `pkmws eval` reports it).
 CriterionField moma_velocity_ratio(const mechanisms::Moma& mechanism);
+/// Condition number κ = σ_max / σ_min of dq/dP (as `pkmws eval` reports it).
+CriterionField moma_condition_number(const mechanisms::Moma& mechanism);
 /// The capability object (valid while `mechanism` lives).
 std::shared_ptr<const CriterionFields> moma_fields(const mechanisms::Moma& mechanism);
 
