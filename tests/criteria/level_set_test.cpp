@@ -296,3 +296,31 @@ TEST(LevelSets, PaminsaReactionLimitedRegionAgainstSampling) {
 }
 
 }  // namespace
+
+namespace {
+
+// The refinement runs leaves, and the first levels inside a leaf, as parallel
+// tasks; every result is merged in a fixed order, so 1 and 2 threads agree bit
+// for bit (DexTAR (+1, -1), alpha <= 80 deg: most work near the base joints).
+TEST(LevelSets, OneAndTwoThreadsGiveIdenticalResults) {
+  const auto m = pkmws::test::five_bar::dextar(1, -1);
+  const auto field = criteria::five_bar_pressure_angle(m);
+  const geometry::Region w = m.workspace();
+  certified::LevelSetResult r[2];
+  for (int k = 0; k < 2; ++k) {
+    certified::LevelSetOptions o;
+    o.relative_tolerance = 1e-6;
+    o.threads = k + 1;
+    r[k] = certified::sublevel_set(*field.surrogate, field.level(80.0), w, field.within_test, o);
+  }
+  EXPECT_EQ(r[0].region.area_lower, r[1].region.area_lower);
+  EXPECT_EQ(r[0].region.area_upper, r[1].region.area_upper);
+  EXPECT_EQ(r[0].traced_cells, r[1].traced_cells);
+  EXPECT_EQ(r[0].undecided_cells, r[1].undecided_cells);
+  EXPECT_EQ(r[0].cell_tests, r[1].cell_tests);
+  ASSERT_EQ(r[0].curves.size(), r[1].curves.size());
+  for (std::size_t i = 0; i < r[0].curves.size(); ++i) EXPECT_EQ(r[0].curves[i], r[1].curves[i]);
+  EXPECT_GT(r[0].undecided_cells, 1000u);  // the case has the unbalanced work the tasks are for
+}
+
+}  // namespace

@@ -521,8 +521,27 @@ struct LeafResult {
   std::uint64_t tests = 0;
 };
 
+// Appends b's results to a's (in order: the merged result is the one a serial
+// recursion would give).
+void append(LeafResult& a, LeafResult&& b) {
+  const auto move_all = [](auto& to, auto& from) {
+    to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));
+  };
+  move_all(a.inside, b.inside);
+  move_all(a.undecided, b.undecided);
+  move_all(a.traced, b.traced);
+  move_all(a.traced_across, b.traced_across);
+  a.tests += b.tests;
+}
+
+// The first levels of a leaf's refinement run their four children as parallel
+// tasks (a few leaves near singular points hold most of the work); each child
+// fills its own result, merged in child order, so the results do not depend on
+// the number of threads.
+constexpr int kParallelRefineDepth = 5;
+
 void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, const Box& cell, int depth,
-            int max_depth, double tau, bool trace, Budget& budget, LeafResult& r) {
+            int max_depth, double tau, bool trace, Budget& budget, LeafResult& r, bool parallel = false) {
   if (budget.expired()) { r.undecided.push_back(cell); return; }  // valid: undecided is always allowed
   ++r.tests;
   const CellState in_w = within_test(cell);
@@ -547,10 +566,19 @@ void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, co
   }
   if (depth >= max_depth) { r.undecided.push_back(cell); return; }
   const double xm = 0.5 * (cell.min.x + cell.max.x), ym = 0.5 * (cell.min.y + cell.max.y);
-  refine(cs, within_test, make_box(cell.min.x, cell.min.y, xm, ym), depth + 1, max_depth, tau, trace, budget, r);
-  refine(cs, within_test, make_box(xm, cell.min.y, cell.max.x, ym), depth + 1, max_depth, tau, trace, budget, r);
-  refine(cs, within_test, make_box(cell.min.x, ym, xm, cell.max.y), depth + 1, max_depth, tau, trace, budget, r);
-  refine(cs, within_test, make_box(xm, ym, cell.max.x, cell.max.y), depth + 1, max_depth, tau, trace, budget, r);
+  const std::array<Box, 4> kids = {make_box(cell.min.x, cell.min.y, xm, ym), make_box(xm, cell.min.y, cell.max.x, ym),
+                                   make_box(cell.min.x, ym, xm, cell.max.y), make_box(xm, ym, cell.max.x, cell.max.y)};
+  if (parallel && depth < kParallelRefineDepth) {
+    std::array<LeafResult, 4> parts;
+    detail::ParallelPolicy nested;  // the enclosing arena's threads
+    nested.serial_threshold = 0;
+    detail::for_each_block(nested, kids.size(), kids.size(), [&](std::size_t k) {
+      refine(cs, within_test, kids[k], depth + 1, max_depth, tau, trace, budget, parts[k], true);
+    });
+    for (LeafResult& p : parts) append(r, std::move(p));
+    return;
+  }
+  for (const Box& k : kids) refine(cs, within_test, k, depth + 1, max_depth, tau, trace, budget, r);
 }
 
 // Splits merged runs of the cover back into its leaf cells.
@@ -606,7 +634,8 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
   policy.serial_threshold = 8;
   Budget budget(options, leaves.size());
   detail::for_each_block(policy, leaves.size(), leaves.size() * 64, [&](std::size_t k) {
-    refine(cs, within_test, leaves[k], 0, options.refine_depth, tau, options.trace, budget, per_leaf[k]);
+    refine(cs, within_test, leaves[k], 0, options.refine_depth, tau, options.trace, budget, per_leaf[k],
+           detail::effective_threads(policy) > 1);
     budget.leaf_done();
   });
   result.stopped = budget.stopped();
@@ -625,24 +654,41 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
   // Refined cells across W's boundary are small (near the points where the
   // level curve meets W's boundary): counted as undecided (lower 0, upper the
   // box's area) instead of exact clipping, which would cost more than it gains.
-  for (std::size_t k = 0; k < per_leaf.size(); ++k) {
-    LeafResult& r = per_leaf[k];
-    result.cell_tests += r.tests;
-    for (const Box& b : r.inside) {
+  // The box tests against W run per leaf in parallel (partial sums added in
+  // leaf order: the same result for any number of threads).
+  enum : char { in_w, straddle, small_split };
+  struct LeafSums {
+    double in_lower = 0.0, undecided_in = 0.0;
+    std::vector<char> kind;  // per inside box
+  };
+  std::vector<LeafSums> sums(per_leaf.size());
+  detail::for_each_block(policy, per_leaf.size(), per_leaf.size() * 64, [&](std::size_t k) {
+    LeafSums& m = sums[k];
+    m.kind.reserve(per_leaf[k].inside.size());
+    for (const Box& b : per_leaf[k].inside) {
       if (within_test(b) == CellState::inside) {
-        in_lower += box_area(b);
-        inside_all.push_back(b);
+        m.in_lower += box_area(b);
+        m.kind.push_back(in_w);
       } else if (b.width() >= small_cell) {
-        inside_all.push_back(b);
-        straddle_inside.push_back(b);
+        m.kind.push_back(straddle);
       } else {
         // Small and across W's boundary: its area bounds from a split against
         // W alone (cheap test); the regions take the whole box, clipped to W
         // exactly below (the split's hundreds of boxes along W's boundary
         // would only make the Boolean operations slow).
-        split_within(within_test, b, 8, in_lower, undecided_in);
-        inside_all.push_back(b);
+        split_within(within_test, b, 8, m.in_lower, m.undecided_in);
+        m.kind.push_back(small_split);
       }
+    }
+  });
+  for (std::size_t k = 0; k < per_leaf.size(); ++k) {
+    LeafResult& r = per_leaf[k];
+    result.cell_tests += r.tests;
+    in_lower += sums[k].in_lower;
+    undecided_in += sums[k].undecided_in;
+    for (std::size_t i = 0; i < r.inside.size(); ++i) {
+      inside_all.push_back(r.inside[i]);
+      if (sums[k].kind[i] == straddle) straddle_inside.push_back(r.inside[i]);
     }
     for (const Box& b : r.undecided) {
       undecided_all.push_back(b);
