@@ -89,6 +89,50 @@ TEST(BiglideVelocityRatio, CertifiedBoundsContainADenseGridEstimate) {
   EXPECT_NEAR(grid, r.region.area_estimate(), 2e-3 * grid);
 }
 
+TEST(BiglideConditionNumber, SurrogateAgreesWithTheEvaluationAndBoundsAGrid) {
+  const auto f = simplified();
+  const auto& m = dynamic_cast<const mechanisms::Biglide&>(*f.model);
+  const auto c = criteria::biglide_condition_number(m);
+  const auto box = m.bounds();
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> ux(box.min.x, box.max.x), uy(box.min.y, box.max.y);
+  int checked = 0;
+  for (int n = 0; n < 4000 && checked < 300; ++n) {
+    const Point p{ux(rng), uy(rng)};
+    const auto e = m.evaluate({p.x, p.y, 0.0}, {});
+    // The evaluation of the paper's branches (the fields' mode).
+    const auto own = std::find_if(e.begin(), e.end(), [](const auto& v) { return v.mode == "--"; });
+    if (own == e.end() || !own->reachable || own->singular) continue;
+    const double kappa = own->condition_number;
+    if (!(kappa < 1e3)) continue;
+    EXPECT_NEAR(c.value(p), kappa, 1e-9 * kappa);
+    for (double t : {1.5, 3.0, 10.0}) {
+      if (std::abs(kappa - t) > 1e-9 * t) {
+        EXPECT_EQ(kappa <= t, c.surrogate->value(p) <= c.level(t));
+      }
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, 300);
+  // κ depends on y only (both rows start with 1): the certified area of κ <= 3
+  // against a grid of the evaluation.
+  certified::LevelSetOptions o;
+  o.relative_tolerance = 1e-6;
+  const auto r = criteria::limited_workspace(f, {{"condition_number", 3.0}}, o);
+  EXPECT_LE(r.region.width(), 1e-6 * r.region.area_upper);
+  const int n = 600;
+  const double dx = box.width() / n, dy = box.height() / n;
+  long count = 0;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const Point p{box.min.x + (i + 0.5) * dx, box.min.y + (j + 0.5) * dy};
+      count += m.reachable({p.x, p.y, 0.0}) && c.value(p) <= 3.0 ? 1 : 0;
+    }
+  }
+  const double grid = static_cast<double>(count) * dx * dy;
+  EXPECT_NEAR(grid, 0.5 * (r.region.area_lower + r.region.area_upper), 3e-3 * grid);
+}
+
 TEST(BiglideVelocityRatio, OtherMechanismsAndTheRealSchemeAreRefusedClearly) {
   const auto real = io::load_mechanism(dataset("biglide_real"));
   EXPECT_THROW(criteria::fields_for(real, "velocity_ratio"), io::InputError);

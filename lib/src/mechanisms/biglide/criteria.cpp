@@ -1,5 +1,8 @@
-// Biglide velocity-ratio fields ([Strutynskyi] fig. 8), one per leg.
+// Biglide velocity-ratio fields ([Strutynskyi] fig. 8), one per leg, and the
+// condition number of dq/dP.
 #include "mechanisms/biglide/criteria.hpp"
+
+#include <Eigen/SVD>
 
 #include "criteria/support.hpp"
 
@@ -50,8 +53,11 @@ struct BiglideVelocityRatio {
     (void)x;
     return r;
   }
+  bool kappa = false;  // eval() gives the condition-number surrogate of dq/dP instead
   template <class T> T eval(const T& x, const T& y) const {
     const Parts<T> p = parts(x, y);
+    // dq/dP has rows (1, ∂q_i/∂y): both sliders follow x one to one (q_1 = x + b_1 w_1, q_2 = J_x + b_2 w_2).
+    if (kappa) return kappa_surrogate(Rows2<T>{T(1.0), p.dq1, T(1.0), p.dq2});
     return certified::sqr(leg == 0 ? p.dq1 : p.dq2);
   }
   // Smooth where both rods are strictly off the perpendicular (w_i > 0).
@@ -100,22 +106,46 @@ CriterionField biglide_velocity_ratio(const mechanisms::Biglide& mechanism, int 
 }
 
 
+CriterionField biglide_condition_number(const mechanisms::Biglide& mechanism) {
+  BiglideVelocityRatio impl(mechanism, 0);
+  impl.kappa = true;
+  CriterionField c;
+  c.name = "condition_number";
+  c.unit = "";  // dimensionless
+  c.key = "biglide.kappa";
+  c.threshold_min = 1.0;
+  c.surrogate = std::make_shared<certified::TemplateField<BiglideVelocityRatio>>(impl);
+  c.level = kappa_level;
+  const mechanisms::Biglide* m = &mechanism;
+  c.value = [m](Point p) {
+    if (!m->reachable({p.x, p.y, 0.0})) return nan;
+    const Eigen::JacobiSVD<Eigen::Matrix2d> svd(m->inverse_jacobian(p));  // the paper's branches
+    const auto sv = svd.singularValues();
+    return sv(1) > 0.0 ? sv(0) / sv(1) : std::numeric_limits<double>::infinity();
+  };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
+  return c;
+}
+
 namespace {
 
-// Capability criteria::CriterionFields of the biglide: the velocity ratio.
+// Capability criteria::CriterionFields of the biglide: the velocity ratio and
+// the condition number.
 class BiglideFields final : public CriterionFields {
  public:
   explicit BiglideFields(const mechanisms::Biglide* m) : m_(m) {}
   std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& /*criteria*/,
                                      const std::vector<int>& /*reaction_legs*/) const override {
-    if (name != "velocity_ratio") {
-      throw std::invalid_argument("for the biglide the certified level sets are of the velocity ratio "
-                                  "(criteria.max_velocity_ratio); pkmws eval gives pressure angles and reactions at a pose");
+    if (name != "velocity_ratio" && name != "condition_number") {
+      throw std::invalid_argument("for the biglide the certified level sets are of the velocity ratio and the "
+                                  "condition number (criteria.max_velocity_ratio, max_condition_number); pkmws eval "
+                                  "gives pressure angles and reactions at a pose");
     }
     if (m_->real_scheme()) {
       throw std::invalid_argument("velocity-ratio level sets need the exact workspace of the simplified "
                                   "scheme; the real scheme's workspace is itself certified (coupler-curve boundary)");
     }
+    if (name == "condition_number") return {biglide_condition_number(*m_)};
     return {biglide_velocity_ratio(*m_, 0), biglide_velocity_ratio(*m_, 1)};
   }
 

@@ -11,6 +11,8 @@ namespace pkmws::criteria {
 /// Biglide velocity ratio V_i / V_y = |∂q_i/∂y| of leg `leg` (0-based; [Strutynskyi]
 /// fig. 8), paper's branches; surrogate (∂q_i/∂y)².
 CriterionField biglide_velocity_ratio(const mechanisms::Biglide& mechanism, int leg);
+/// Condition number of dq/dP (rows (1, ∂q_i/∂y)), paper's branches.
+CriterionField biglide_condition_number(const mechanisms::Biglide& mechanism);
 /// The capability object (valid while `mechanism` lives).
 std::shared_ptr<const CriterionFields> biglide_fields(const mechanisms::Biglide& mechanism);
 
