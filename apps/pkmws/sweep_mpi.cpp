@@ -1,5 +1,7 @@
 #include "sweep_mpi.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <mutex>
 #include <string>
@@ -27,6 +29,38 @@ int launcher_size() {
 constexpr int kReady = 1;  // worker -> rank 0: a finished row (CSV line) or "" at start
 constexpr int kWork = 2;   // rank 0 -> worker: a design index
 constexpr int kStop = 3;   // rank 0 -> worker: no more designs
+// Requests a worker keeps open: while it evaluates one design, the index of
+// the next is already on its way, so it never waits for rank 0's answer (at
+// most one design waits in a worker's hands: scheduling stays dynamic).
+constexpr int kRequests = 2;
+
+// Waits for a message without spinning. Open MPI's blocking calls (MPI_Probe,
+// MPI_Recv) busy-poll: rank 0's communication thread would take a whole core
+// from the evaluation threads (three busy threads on two cores for two
+// ranks). Polls with MPI_Iprobe, sleeping 20 us after the first miss and
+// twice as long after each further one, at most 1 ms (a delay far below a
+// design's cost, which the open requests hide anyway).
+MPI_Status wait_message(int source, int tag) {
+  MPI_Status status;
+  auto pause = std::chrono::microseconds(20);
+  for (;;) {
+    int flag = 0;
+    MPI_Iprobe(source, tag, MPI_COMM_WORLD, &flag, &status);
+    if (flag) return status;
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::microseconds(1000));
+  }
+}
+
+// Receives the pending request (a row, or "" for a first request) that
+// `status` describes.
+std::string receive_request(const MPI_Status& status) {
+  int length = 0;
+  MPI_Get_count(&status, MPI_CHAR, &length);
+  std::string line(static_cast<std::size_t>(length), '\0');
+  MPI_Recv(line.data(), length, MPI_CHAR, status.MPI_SOURCE, kReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return line;
+}
 
 std::vector<std::size_t>::size_type next_index(std::mutex& m, std::size_t& position, std::size_t end) {
   const std::lock_guard<std::mutex> lock(m);
@@ -91,16 +125,15 @@ void MpiSweep::stop_workers() {
 #ifdef PKMWS_WITH_MPI
   if (workers_stopped_) return;
   workers_stopped_ = true;
-  // Answer every worker's pending request with "stop" (rank 0 failed early,
-  // or no designs are left).
+  // Answer every worker's open requests with "stop" (rank 0 failed early, or
+  // no designs are left); a worker busy with a design asks once it is done.
+  stops_sent_.resize(static_cast<std::size_t>(size_), 0);
   for (int w = 1; w < size_; ++w) {
-    MPI_Status status;
-    MPI_Probe(w, kReady, MPI_COMM_WORLD, &status);
-    int length = 0;
-    MPI_Get_count(&status, MPI_CHAR, &length);
-    std::string ignored(static_cast<std::size_t>(length), '\0');
-    MPI_Recv(ignored.data(), length, MPI_CHAR, w, kReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    MPI_Send(nullptr, 0, MPI_CHAR, w, kStop, MPI_COMM_WORLD);
+    while (stops_sent_[static_cast<std::size_t>(w)] < kRequests) {
+      (void)receive_request(wait_message(w, kReady));
+      MPI_Send(nullptr, 0, MPI_CHAR, w, kStop, MPI_COMM_WORLD);
+      ++stops_sent_[static_cast<std::size_t>(w)];
+    }
   }
 #endif
 }
@@ -125,17 +158,20 @@ std::vector<design::DesignRow> MpiSweep::run(const design::SweepSpec& spec, cons
     }
   });
   const std::size_t parameters = spec.parameters.size(), metrics = design::metric_columns(spec).size();
-  int active = size_ - 1;
+  stops_sent_.assign(static_cast<std::size_t>(size_), 0);
+  int active = size_ - 1;  // workers with open requests
   while (active > 0) {
-    MPI_Status status;
-    MPI_Probe(MPI_ANY_SOURCE, kReady, MPI_COMM_WORLD, &status);
-    int length = 0;
-    MPI_Get_count(&status, MPI_CHAR, &length);
-    std::string line(static_cast<std::size_t>(length), '\0');
-    MPI_Recv(line.data(), length, MPI_CHAR, status.MPI_SOURCE, kReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    const MPI_Status status = wait_message(MPI_ANY_SOURCE, kReady);
+    const std::string line = receive_request(status);
     if (!line.empty()) {
       auto row = design::parse_csv_line(line, parameters, metrics, true);
       if (!row) {
+        MPI_Send(nullptr, 0, MPI_CHAR, status.MPI_SOURCE, kStop, MPI_COMM_WORLD);  // answered: no deadlock
+        ++stops_sent_[static_cast<std::size_t>(status.MPI_SOURCE)];
+        {
+          const std::lock_guard<std::mutex> lock(m);
+          position = todo.size();  // the local thread stops after its design
+        }
         local.join();
         throw std::runtime_error("sweep: rank " + std::to_string(status.MPI_SOURCE) + " sent a malformed row");
       }
@@ -144,7 +180,7 @@ std::vector<design::DesignRow> MpiSweep::run(const design::SweepSpec& spec, cons
     const std::size_t k = next_index(m, position, todo.size());
     if (k == todo.size()) {
       MPI_Send(nullptr, 0, MPI_CHAR, status.MPI_SOURCE, kStop, MPI_COMM_WORLD);
-      --active;
+      if (++stops_sent_[static_cast<std::size_t>(status.MPI_SOURCE)] == kRequests) --active;
     } else {
       const unsigned long long index = todo[k];
       MPI_Send(&index, 1, MPI_UNSIGNED_LONG_LONG, status.MPI_SOURCE, kWork, MPI_COMM_WORLD);
@@ -162,14 +198,19 @@ std::vector<design::DesignRow> MpiSweep::run(const design::SweepSpec& spec, cons
 
 void MpiSweep::serve(const design::SweepSpec& spec) {
 #ifdef PKMWS_WITH_MPI
-  std::string line;  // the previous row, "" on the first request
-  for (;;) {
-    MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
+  // kRequests empty requests, then one request with each finished row; every
+  // request is answered by a design index or "stop" (only stops once the
+  // designs run out), so the worker is done when all its requests are.
+  for (int k = 0; k < kRequests; ++k) MPI_Send(nullptr, 0, MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
+  for (int open = kRequests; open > 0;) {
     MPI_Status status;
     unsigned long long index = 0;
     MPI_Recv(&index, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
-    if (status.MPI_TAG == kStop) return;
-    line = design::csv_line(design::evaluate_design(spec, static_cast<std::size_t>(index)), true);
+    --open;
+    if (status.MPI_TAG == kStop) continue;
+    const std::string line = design::csv_line(design::evaluate_design(spec, static_cast<std::size_t>(index)), true);
+    MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
+    ++open;
   }
 #else
   (void)spec;
