@@ -29,26 +29,27 @@ int launcher_size() {
 constexpr int kReady = 1;  // worker -> rank 0: a finished row (CSV line) or "" at start
 constexpr int kWork = 2;   // rank 0 -> worker: a design index
 constexpr int kStop = 3;   // rank 0 -> worker: no more designs
-// Requests a worker keeps open: while it evaluates one design, the index of
-// the next is already on its way, so it never waits for rank 0's answer (at
-// most one design waits in a worker's hands: scheduling stays dynamic).
-constexpr int kRequests = 2;
+// Requests a worker keeps open: while it evaluates one design, the indices of
+// the next two are already on their way, so it does not wait for rank 0's
+// answer even when designs take less than a millisecond (at most two designs
+// wait in a worker's hands: scheduling stays dynamic).
+constexpr int kRequests = 3;
 
 // Waits for a message without spinning. Open MPI's blocking calls (MPI_Probe,
 // MPI_Recv) busy-poll: rank 0's communication thread would take a whole core
 // from the evaluation threads (three busy threads on two cores for two
-// ranks). Polls with MPI_Iprobe, sleeping 20 us after the first miss and
-// twice as long after each further one, at most 1 ms (a delay far below a
-// design's cost, which the open requests hide anyway).
+// ranks). Polls with MPI_Iprobe, sleeping 10 us after the first miss and
+// twice as long after each further one, at most 250 us: a delay that the
+// open requests hide, and a few thousand wake-ups a second when idle.
 MPI_Status wait_message(int source, int tag) {
   MPI_Status status;
-  auto pause = std::chrono::microseconds(20);
+  auto pause = std::chrono::microseconds(10);
   for (;;) {
     int flag = 0;
     MPI_Iprobe(source, tag, MPI_COMM_WORLD, &flag, &status);
     if (flag) return status;
     std::this_thread::sleep_for(pause);
-    pause = std::min(pause * 2, std::chrono::microseconds(1000));
+    pause = std::min(pause * 2, std::chrono::microseconds(250));
   }
 }
 
