@@ -47,6 +47,7 @@ AREA_ACCURACY = 1e-6   # shapely: relative area error against the exact area, ev
 CIRCLE_PRECISION = 1e-5  # pkmws's inscribed-circle tolerance, relative to the bounding box (as `pkmws area`)
 TARGET_SHAPELY = 10.0  # in-process >= 10x shapely's designs/s
 TARGET_MPI = 1.8       # 2 ranks >= 1.8x one rank on a certified-metric sweep
+DEFAULT_QUAD_SEGS = 16  # shapely's default buffer resolution, for context
 
 # The swept parameters, in the order the scaling table adds them.
 PARAMETERS = [
@@ -141,6 +142,27 @@ def shapely_design(tools, doc, quad_segs):
     return area, radius
 
 
+def shapely_stages(tools, docs, quad_segs):
+    """Seconds per design of each step of shapely_design: the two band
+    polygons, their intersection, its area, the inscribed circle."""
+    Polygon, mic_radius, _ = tools
+    total = [0.0] * 4
+    for doc in docs:
+        t0 = time.perf_counter()
+        a, b = (band_polygon(Polygon, leg, quad_segs) for leg in doc["legs"])
+        t1 = time.perf_counter()
+        ws = a.intersection(b)
+        t2 = time.perf_counter()
+        _ = ws.area
+        t3 = time.perf_counter()
+        x0, y0, x1, y1 = ws.bounds
+        mic_radius(ws, CIRCLE_PRECISION * max(x1 - x0, y1 - y0))
+        t4 = time.perf_counter()
+        for k, dt in enumerate((t1 - t0, t2 - t1, t3 - t2, t4 - t3)):
+            total[k] += dt
+    return [t / len(docs) for t in total]
+
+
 def shapely_area_errors(tools, docs, exact, quad_segs):
     Polygon = tools[0]
     errs = []
@@ -155,7 +177,7 @@ def choose_resolution(tools, docs, exact):
     every design's relative area error <= AREA_ACCURACY; the error of an
     inscribed polygon falls like 1/quad_segs^2."""
     tried = []
-    q = 16
+    q = DEFAULT_QUAD_SEGS
     while q <= 1 << 14:
         worst = max(shapely_area_errors(tools, docs, exact, q))
         tried.append((q, worst))
@@ -282,11 +304,14 @@ def measure(args):
             # tolerance) against pkmws's certified lower bound.
             res["radius_diff"] = max(abs(g[1] - r) / r for g, r in zip(geos, radii))
 
-            def shapely_rate():
-                t = time.perf_counter()
-                for d in docs:
-                    shapely_design(tools, d, q)
-                return len(docs) / (time.perf_counter() - t)
+            def shapely_rate(quad_segs):
+                def rate():
+                    t = time.perf_counter()
+                    for d in docs:
+                        shapely_design(tools, d, quad_segs)
+                    return len(docs) / (time.perf_counter() - t)
+                return rate
+            res["stages"] = shapely_stages(tools, docs, q)
         else:
             shapely_rate = None
 
@@ -298,7 +323,7 @@ def measure(args):
             if pk.mpirun:
                 fns.append(lambda s=spec: pk.cli_sweep(s, out, 1, ranks=2)[0])
             if spec is ac and shapely_rate:
-                fns.append(shapely_rate)
+                fns += [shapely_rate(q), shapely_rate(DEFAULT_QUAD_SEGS)]
             rows_ac.append(best_of(args.rounds, fns))
         res["rates"] = rows_ac
         res["mpi"] = bool(pk.mpirun)
@@ -375,8 +400,18 @@ def markdown(res, args):
         ratio = f"{ac[k] / shapely:.2f}×" if shapely else "—"
         lines.append(f"| {name} | {fmt(ac[k])} | {ratio} | {fmt(acr[k])} |")
     if shapely is not None:
-        lines.append(f"| shapely/GEOS, `quad_segs` {res['quad_segs']}, 1 thread | {fmt(shapely)} | 1× | — (no rectangle in GEOS) |")
+        lines.append(f"| **shapely/GEOS**, `quad_segs` {res['quad_segs']} (area within {AREA_ACCURACY:g}), 1 thread | "
+                     f"{fmt(shapely)} | 1× | — (no rectangle in GEOS) |")
+        coarse = ac[len(names) + 1]
+        err16 = dict(res["tried"]).get(DEFAULT_QUAD_SEGS, float("nan"))
+        lines.append(f"| shapely/GEOS, `quad_segs` {DEFAULT_QUAD_SEGS} (shapely's default; area error up to "
+                     f"{err16:.1e}: not the target's accuracy), 1 thread | {fmt(coarse)} | {coarse / shapely:.2f}× | — |")
     lines.append("")
+    if shapely is not None:
+        st = res["stages"]
+        lines += [f"shapely's time per design at `quad_segs` {res['quad_segs']}: the two band polygons "
+                  f"{st[0] * 1e3:.2f} ms, `intersection` {st[1] * 1e3:.2f} ms, `area` {st[2] * 1e3:.3f} ms, the "
+                  f"inscribed circle {st[3] * 1e3:.2f} ms.", ""]
     ratios = [f"2 threads / 1 (in-process): {ac[1] / ac[0]:.2f}× (area + circle), {acr[1] / acr[0]:.2f}× (+ rectangle)",
               f"`--threads 2` / `--threads 1`: {ac[3] / ac[2]:.2f}×, {acr[3] / acr[2]:.2f}×"]
     if res["mpi"]:
