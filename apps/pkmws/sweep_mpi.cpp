@@ -26,14 +26,17 @@ int launcher_size() {
 }
 
 #ifdef PKMWS_WITH_MPI
-constexpr int kReady = 1;  // worker -> rank 0: a finished row (CSV line) or "" at start
+constexpr int kReady = 1;  // worker -> rank 0: a request, with the previous row (CSV line) or ""
 constexpr int kWork = 2;   // rank 0 -> worker: a design index
 constexpr int kStop = 3;   // rank 0 -> worker: no more designs
-// Requests a worker keeps open: while it evaluates one design, the indices of
-// the next two are already on their way, so it does not wait for rank 0's
-// answer even when designs take less than a millisecond (at most two designs
-// wait in a worker's hands: scheduling stays dynamic).
-constexpr int kRequests = 3;
+constexpr int kDone = 4;   // worker -> rank 0: every request answered, the worker leaves
+// A worker's open requests: one while it evaluates (the row it sends asks for
+// the next design), so that no design waits in its hands while another rank
+// is idle at the end of a sweep of costly designs. After a design that took
+// less than kQuickMs it opens up to kMaxOpen, so that designs under a
+// millisecond do not wait for rank 0's answer.
+constexpr int kMaxOpen = 3;
+constexpr double kQuickMs = 20.0;
 
 // Waits for a message without spinning. Open MPI's blocking calls (MPI_Probe,
 // MPI_Recv) busy-poll: rank 0's communication thread would take a whole core
@@ -126,14 +129,20 @@ void MpiSweep::stop_workers() {
 #ifdef PKMWS_WITH_MPI
   if (workers_stopped_) return;
   workers_stopped_ = true;
-  // Answer every worker's open requests with "stop" (rank 0 failed early, or
-  // no designs are left); a worker busy with a design asks once it is done.
-  stops_sent_.resize(static_cast<std::size_t>(size_), 0);
+  // Answer every worker's open requests with "stop" until it leaves (rank 0
+  // failed early, or no designs are left); a worker busy with a design asks
+  // once it is done.
+  left_.resize(static_cast<std::size_t>(size_), 0);
   for (int w = 1; w < size_; ++w) {
-    while (stops_sent_[static_cast<std::size_t>(w)] < kRequests) {
-      (void)receive_request(wait_message(w, kReady));
-      MPI_Send(nullptr, 0, MPI_CHAR, w, kStop, MPI_COMM_WORLD);
-      ++stops_sent_[static_cast<std::size_t>(w)];
+    while (!left_[static_cast<std::size_t>(w)]) {
+      const MPI_Status status = wait_message(w, MPI_ANY_TAG);
+      if (status.MPI_TAG == kDone) {
+        MPI_Recv(nullptr, 0, MPI_CHAR, w, kDone, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        left_[static_cast<std::size_t>(w)] = 1;
+      } else {
+        (void)receive_request(status);
+        MPI_Send(nullptr, 0, MPI_CHAR, w, kStop, MPI_COMM_WORLD);
+      }
     }
   }
 #endif
@@ -159,16 +168,21 @@ std::vector<design::DesignRow> MpiSweep::run(const design::SweepSpec& spec, cons
     }
   });
   const std::size_t parameters = spec.parameters.size(), metrics = design::metric_columns(spec).size();
-  stops_sent_.assign(static_cast<std::size_t>(size_), 0);
-  int active = size_ - 1;  // workers with open requests
+  left_.assign(static_cast<std::size_t>(size_), 0);
+  int active = size_ - 1;  // workers that have not left
   while (active > 0) {
-    const MPI_Status status = wait_message(MPI_ANY_SOURCE, kReady);
+    const MPI_Status status = wait_message(MPI_ANY_SOURCE, MPI_ANY_TAG);
+    if (status.MPI_TAG == kDone) {
+      MPI_Recv(nullptr, 0, MPI_CHAR, status.MPI_SOURCE, kDone, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      left_[static_cast<std::size_t>(status.MPI_SOURCE)] = 1;
+      --active;
+      continue;
+    }
     const std::string line = receive_request(status);
     if (!line.empty()) {
       auto row = design::parse_csv_line(line, parameters, metrics, true);
       if (!row) {
         MPI_Send(nullptr, 0, MPI_CHAR, status.MPI_SOURCE, kStop, MPI_COMM_WORLD);  // answered: no deadlock
-        ++stops_sent_[static_cast<std::size_t>(status.MPI_SOURCE)];
         {
           const std::lock_guard<std::mutex> lock(m);
           position = todo.size();  // the local thread stops after its design
@@ -181,7 +195,6 @@ std::vector<design::DesignRow> MpiSweep::run(const design::SweepSpec& spec, cons
     const std::size_t k = next_index(m, position, todo.size());
     if (k == todo.size()) {
       MPI_Send(nullptr, 0, MPI_CHAR, status.MPI_SOURCE, kStop, MPI_COMM_WORLD);
-      if (++stops_sent_[static_cast<std::size_t>(status.MPI_SOURCE)] == kRequests) --active;
     } else {
       const unsigned long long index = todo[k];
       MPI_Send(&index, 1, MPI_UNSIGNED_LONG_LONG, status.MPI_SOURCE, kWork, MPI_COMM_WORLD);
@@ -199,20 +212,28 @@ std::vector<design::DesignRow> MpiSweep::run(const design::SweepSpec& spec, cons
 
 void MpiSweep::serve(const design::SweepSpec& spec) {
 #ifdef PKMWS_WITH_MPI
-  // kRequests empty requests, then one request with each finished row; every
-  // request is answered by a design index or "stop" (only stops once the
-  // designs run out), so the worker is done when all its requests are.
-  for (int k = 0; k < kRequests; ++k) MPI_Send(nullptr, 0, MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
-  for (int open = kRequests; open > 0;) {
+  // Every request is answered by a design index or "stop" (only stops once
+  // the designs run out); the worker leaves when all its requests are.
+  MPI_Send(nullptr, 0, MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
+  bool stopped = false;
+  for (int open = 1; open > 0;) {
     MPI_Status status;
     unsigned long long index = 0;
     MPI_Recv(&index, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
     --open;
-    if (status.MPI_TAG == kStop) continue;
-    const std::string line = design::csv_line(design::evaluate_design(spec, static_cast<std::size_t>(index)), true);
+    if (status.MPI_TAG == kStop) {
+      stopped = true;
+      continue;
+    }
+    const design::DesignRow row = design::evaluate_design(spec, static_cast<std::size_t>(index));
+    const std::string line = design::csv_line(row, true);
     MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
     ++open;
+    for (; !stopped && row.time_ms < kQuickMs && open < kMaxOpen; ++open) {
+      MPI_Send(nullptr, 0, MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
+    }
   }
+  MPI_Send(nullptr, 0, MPI_CHAR, 0, kDone, MPI_COMM_WORLD);
 #else
   (void)spec;
 #endif

@@ -1,7 +1,7 @@
 // Distributing a sweep over MPI ranks (built with -DPKMWS_MPI=ON): rank 0
 // hands out design indices one at a time to whichever rank asks (dynamic
-// scheduling: designs differ a lot in cost; a worker keeps one request open
-// ahead, so it holds at most one design in reserve), evaluates designs itself
+// scheduling: designs differ a lot in cost; a worker asks ahead only for
+// designs under 20 ms, holding at most two in reserve), evaluates designs itself
 // on a second thread, collects the rows and writes every output; its
 // communication thread sleeps between polls instead of spinning. The other
 // ranks only evaluate. Without MPI, or when not started by mpirun, a single rank.
@@ -47,7 +47,7 @@ class MpiSweep {
   bool started_ = false;
   bool released_ = false;
   bool workers_stopped_ = false;
-  std::vector<int> stops_sent_;  // rank 0: "stop" answers sent to each rank
+  std::vector<char> left_;  // rank 0: the workers that have left (every request answered)
 };
 
 }  // namespace pkmws::cli
