@@ -4,7 +4,10 @@
 # and docs/figures/bench_error_vs_time.svg. A few minutes on 2 cores. When the
 # Python module is built (build/python), benchmarks/python_overhead.py then
 # replaces the report's section "Python module overhead" (Python against C++
-# per call and per point, measured side by side).
+# per call and per point, measured side by side) and
+# benchmarks/design_space.py its section "Design-space sweeps" (designs per
+# second of pkmws and of shapely/GEOS on the same MOMA designs, threads and
+# MPI ranks, the cost against the number of parameters).
 #   PKMWS_BUILD_DIR  build directory (default: build, what `make build` uses)
 #   BENCH_MIN_TIME   --benchmark_min_time per case in seconds (default 0.05)
 #   BENCH_FILTER     --benchmark_filter regex (default: all)
@@ -30,7 +33,11 @@ if compgen -G "$build/python/pkmws/_pkmws*.so" >/dev/null; then
   # The interpreter the module was built for (CMake cache), else python3.
   py="$(sed -n 's/^PKMWS_PYTHON3:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/null | head -n 1)"
   PYTHONPATH="$build/python" "${py:-python3}" "$root/benchmarks/python_overhead.py" --report "$root/docs/benchmarks.md"
+  # Design-space sweeps: pkmws (in-process, threads, MPI ranks) against
+  # shapely/GEOS on the same designs, about two minutes.
+  PYTHONPATH="$build/python" PKMWS_BUILD_DIR="$build" "${py:-python3}" "$root/benchmarks/design_space.py" \
+    --report "$root/docs/benchmarks.md"
 else
-  echo "run.sh: the Python module is not built ($build/python); no Python overhead section" >&2
+  echo "run.sh: the Python module is not built ($build/python); no Python overhead and design-space sections" >&2
 fi
 echo "wrote docs/benchmarks.md and docs/figures/bench_error_vs_time.svg"

@@ -1,5 +1,7 @@
 #include "sweep_mpi.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <mutex>
 #include <string>
@@ -24,9 +26,45 @@ int launcher_size() {
 }
 
 #ifdef PKMWS_WITH_MPI
-constexpr int kReady = 1;  // worker -> rank 0: a finished row (CSV line) or "" at start
+constexpr int kReady = 1;  // worker -> rank 0: a request, with the previous row (CSV line) or ""
 constexpr int kWork = 2;   // rank 0 -> worker: a design index
 constexpr int kStop = 3;   // rank 0 -> worker: no more designs
+constexpr int kDone = 4;   // worker -> rank 0: every request answered, the worker leaves
+// A worker's open requests: one while it evaluates (the row it sends asks for
+// the next design), so that no design waits in its hands while another rank
+// is idle at the end of a sweep of costly designs. After a design that took
+// less than kQuickMs it opens up to kMaxOpen, so that designs under a
+// millisecond do not wait for rank 0's answer.
+constexpr int kMaxOpen = 3;
+constexpr double kQuickMs = 20.0;
+
+// Waits for a message without spinning. Open MPI's blocking calls (MPI_Probe,
+// MPI_Recv) busy-poll: rank 0's communication thread would take a whole core
+// from the evaluation threads (three busy threads on two cores for two
+// ranks). Polls with MPI_Iprobe, sleeping 10 us after the first miss and
+// twice as long after each further one, at most 250 us: a delay that the
+// open requests hide, and a few thousand wake-ups a second when idle.
+MPI_Status wait_message(int source, int tag) {
+  MPI_Status status;
+  auto pause = std::chrono::microseconds(10);
+  for (;;) {
+    int flag = 0;
+    MPI_Iprobe(source, tag, MPI_COMM_WORLD, &flag, &status);
+    if (flag) return status;
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::microseconds(250));
+  }
+}
+
+// Receives the pending request (a row, or "" for a first request) that
+// `status` describes.
+std::string receive_request(const MPI_Status& status) {
+  int length = 0;
+  MPI_Get_count(&status, MPI_CHAR, &length);
+  std::string line(static_cast<std::size_t>(length), '\0');
+  MPI_Recv(line.data(), length, MPI_CHAR, status.MPI_SOURCE, kReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return line;
+}
 
 std::vector<std::size_t>::size_type next_index(std::mutex& m, std::size_t& position, std::size_t end) {
   const std::lock_guard<std::mutex> lock(m);
@@ -91,16 +129,21 @@ void MpiSweep::stop_workers() {
 #ifdef PKMWS_WITH_MPI
   if (workers_stopped_) return;
   workers_stopped_ = true;
-  // Answer every worker's pending request with "stop" (rank 0 failed early,
-  // or no designs are left).
+  // Answer every worker's open requests with "stop" until it leaves (rank 0
+  // failed early, or no designs are left); a worker busy with a design asks
+  // once it is done.
+  left_.resize(static_cast<std::size_t>(size_), 0);
   for (int w = 1; w < size_; ++w) {
-    MPI_Status status;
-    MPI_Probe(w, kReady, MPI_COMM_WORLD, &status);
-    int length = 0;
-    MPI_Get_count(&status, MPI_CHAR, &length);
-    std::string ignored(static_cast<std::size_t>(length), '\0');
-    MPI_Recv(ignored.data(), length, MPI_CHAR, w, kReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    MPI_Send(nullptr, 0, MPI_CHAR, w, kStop, MPI_COMM_WORLD);
+    while (!left_[static_cast<std::size_t>(w)]) {
+      const MPI_Status status = wait_message(w, MPI_ANY_TAG);
+      if (status.MPI_TAG == kDone) {
+        MPI_Recv(nullptr, 0, MPI_CHAR, w, kDone, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        left_[static_cast<std::size_t>(w)] = 1;
+      } else {
+        (void)receive_request(status);
+        MPI_Send(nullptr, 0, MPI_CHAR, w, kStop, MPI_COMM_WORLD);
+      }
+    }
   }
 #endif
 }
@@ -125,17 +168,25 @@ std::vector<design::DesignRow> MpiSweep::run(const design::SweepSpec& spec, cons
     }
   });
   const std::size_t parameters = spec.parameters.size(), metrics = design::metric_columns(spec).size();
-  int active = size_ - 1;
+  left_.assign(static_cast<std::size_t>(size_), 0);
+  int active = size_ - 1;  // workers that have not left
   while (active > 0) {
-    MPI_Status status;
-    MPI_Probe(MPI_ANY_SOURCE, kReady, MPI_COMM_WORLD, &status);
-    int length = 0;
-    MPI_Get_count(&status, MPI_CHAR, &length);
-    std::string line(static_cast<std::size_t>(length), '\0');
-    MPI_Recv(line.data(), length, MPI_CHAR, status.MPI_SOURCE, kReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    const MPI_Status status = wait_message(MPI_ANY_SOURCE, MPI_ANY_TAG);
+    if (status.MPI_TAG == kDone) {
+      MPI_Recv(nullptr, 0, MPI_CHAR, status.MPI_SOURCE, kDone, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      left_[static_cast<std::size_t>(status.MPI_SOURCE)] = 1;
+      --active;
+      continue;
+    }
+    const std::string line = receive_request(status);
     if (!line.empty()) {
       auto row = design::parse_csv_line(line, parameters, metrics, true);
       if (!row) {
+        MPI_Send(nullptr, 0, MPI_CHAR, status.MPI_SOURCE, kStop, MPI_COMM_WORLD);  // answered: no deadlock
+        {
+          const std::lock_guard<std::mutex> lock(m);
+          position = todo.size();  // the local thread stops after its design
+        }
         local.join();
         throw std::runtime_error("sweep: rank " + std::to_string(status.MPI_SOURCE) + " sent a malformed row");
       }
@@ -144,7 +195,6 @@ std::vector<design::DesignRow> MpiSweep::run(const design::SweepSpec& spec, cons
     const std::size_t k = next_index(m, position, todo.size());
     if (k == todo.size()) {
       MPI_Send(nullptr, 0, MPI_CHAR, status.MPI_SOURCE, kStop, MPI_COMM_WORLD);
-      --active;
     } else {
       const unsigned long long index = todo[k];
       MPI_Send(&index, 1, MPI_UNSIGNED_LONG_LONG, status.MPI_SOURCE, kWork, MPI_COMM_WORLD);
@@ -162,15 +212,28 @@ std::vector<design::DesignRow> MpiSweep::run(const design::SweepSpec& spec, cons
 
 void MpiSweep::serve(const design::SweepSpec& spec) {
 #ifdef PKMWS_WITH_MPI
-  std::string line;  // the previous row, "" on the first request
-  for (;;) {
-    MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
+  // Every request is answered by a design index or "stop" (only stops once
+  // the designs run out); the worker leaves when all its requests are.
+  MPI_Send(nullptr, 0, MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
+  bool stopped = false;
+  for (int open = 1; open > 0;) {
     MPI_Status status;
     unsigned long long index = 0;
     MPI_Recv(&index, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
-    if (status.MPI_TAG == kStop) return;
-    line = design::csv_line(design::evaluate_design(spec, static_cast<std::size_t>(index)), true);
+    --open;
+    if (status.MPI_TAG == kStop) {
+      stopped = true;
+      continue;
+    }
+    const design::DesignRow row = design::evaluate_design(spec, static_cast<std::size_t>(index));
+    const std::string line = design::csv_line(row, true);
+    MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
+    ++open;
+    for (; !stopped && row.time_ms < kQuickMs && open < kMaxOpen; ++open) {
+      MPI_Send(nullptr, 0, MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
+    }
   }
+  MPI_Send(nullptr, 0, MPI_CHAR, 0, kDone, MPI_COMM_WORLD);
 #else
   (void)spec;
 #endif

@@ -1,8 +1,10 @@
 // Distributing a sweep over MPI ranks (built with -DPKMWS_MPI=ON): rank 0
 // hands out design indices one at a time to whichever rank asks (dynamic
-// scheduling: designs differ a lot in cost), evaluates designs itself on a
-// second thread, collects the rows and writes every output; the other ranks
-// only evaluate. Without MPI, or when not started by mpirun, a single rank.
+// scheduling: designs differ a lot in cost; a worker asks ahead only for
+// designs under 20 ms, holding at most two in reserve), evaluates designs itself
+// on a second thread, collects the rows and writes every output; its
+// communication thread sleeps between polls instead of spinning. The other
+// ranks only evaluate. Without MPI, or when not started by mpirun, a single rank.
 #pragma once
 
 #include <cstddef>
@@ -45,6 +47,7 @@ class MpiSweep {
   bool started_ = false;
   bool released_ = false;
   bool workers_stopped_ = false;
+  std::vector<char> left_;  // rank 0: the workers that have left (every request answered)
 };
 
 }  // namespace pkmws::cli

@@ -6,28 +6,39 @@
 #include <numbers>
 #include <queue>
 #include <stdexcept>
+#include <vector>
 
 namespace pkmws::geometry {
 
 namespace {
 
-// Is the polar angle `a` (about the arc's centre) within the arc's sweep?
-bool within_sweep_angle(const Curve& c, double a) {
-  const double a0 = std::atan2(c.source.y - c.center.y, c.source.x - c.center.x);
-  const double s = c.sweep();
+// Polar angle of an arc's start about its centre.
+double start_angle(const Curve& c) { return std::atan2(c.source.y - c.center.y, c.source.x - c.center.x); }
+
+// Is the polar angle `a` (about the arc's centre) within the sweep `s` of an
+// arc that starts at the angle `a0`?
+bool within_sweep_angle(double a0, double s, double a) {
   double rel = std::remainder(a - a0, 2.0 * std::numbers::pi);  // [-pi, pi]
   if (s > 0 && rel < 0) rel += 2.0 * std::numbers::pi;
   if (s < 0 && rel > 0) rel -= 2.0 * std::numbers::pi;
   return std::abs(rel) <= std::abs(s);
 }
 
-bool within_sweep(const Curve& c, Point q) {
-  return within_sweep_angle(c, std::atan2(q.y - c.center.y, q.x - c.center.x));
+// A boundary curve with its start angle, computed once for the many points a
+// search asks about (arcs; unused for segments).
+struct Piece {
+  const Curve* curve;
+  double a0, sweep;
+};
+
+Piece piece(const Curve& c) {
+  return c.kind == Curve::Kind::arc ? Piece{&c, start_angle(c), c.sweep()} : Piece{&c, 0.0, 0.0};
 }
 
 // Crossings of the ray {(x, p.y + delta) : x > p.x}, delta an infinitesimal
 // upward shift (the half-open rule), with one curve.
-int crossings(const Curve& c, Point p) {
+int crossings(const Piece& k, Point p) {
+  const Curve& c = *k.curve;
   if (c.kind == Curve::Kind::segment) {
     const Point a = c.source, b = c.target;
     if ((a.y > p.y) == (b.y > p.y)) return 0;
@@ -43,14 +54,13 @@ int crossings(const Curve& c, Point p) {
     if (x <= p.x) continue;
     // Moving up along the circle turns the angle ccw on the right half, cw on the left.
     const double a = std::atan2(dy, side * h) + side * 1e-9;
-    if (within_sweep_angle(c, a)) ++n;
+    if (within_sweep_angle(k.a0, k.sweep, a)) ++n;
   }
   return n;
 }
 
-}  // namespace
-
-double distance(const Curve& c, Point p) {
+double distance(const Piece& k, Point p) {
+  const Curve& c = *k.curve;
   if (c.kind == Curve::Kind::segment) {
     const Point d = c.target - c.source;
     const double len2 = dot(d, d);
@@ -58,27 +68,55 @@ double distance(const Curve& c, Point p) {
     t = std::clamp(t, 0.0, 1.0);
     return norm(p - (c.source + t * d));
   }
-  if (within_sweep(c, p)) return std::abs(norm(p - c.center) - c.radius);
+  if (within_sweep_angle(k.a0, k.sweep, std::atan2(p.y - c.center.y, p.x - c.center.x))) {
+    return std::abs(norm(p - c.center) - c.radius);
+  }
   return std::min(norm(p - c.source), norm(p - c.target));
 }
 
-double distance_to_boundary(const Component& component, Point p) {
-  double d = std::numeric_limits<double>::infinity();
-  for (const Curve& c : component.outer.curves) d = std::min(d, distance(c, p));
+std::vector<Piece> pieces(const Component& component) {
+  std::vector<Piece> out;
+  for (const Curve& c : component.outer.curves) out.push_back(piece(c));
   for (const Loop& h : component.holes) {
-    for (const Curve& c : h.curves) d = std::min(d, distance(c, p));
+    for (const Curve& c : h.curves) out.push_back(piece(c));
+  }
+  return out;
+}
+
+double distance_to_boundary(const std::vector<Piece>& boundary, Point p) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const Piece& k : boundary) {
+    const Curve& c = *k.curve;
+    if (c.kind == Curve::Kind::arc) {
+      // An arc is no closer than its circle: skip it when the circle is
+      // farther than d (|p - centre| outside [r - d, r + d], compared
+      // squared). The slack covers the rounding of the arc's end points,
+      // which lie on the circle, and of these products, so d is the same as
+      // without the test.
+      const double dx = p.x - c.center.x, dy = p.y - c.center.y;
+      const double rho2 = dx * dx + dy * dy;
+      const double slack = 1e-12 * (c.radius + std::abs(dx) + std::abs(dy));
+      const double outer = c.radius + d + slack, inner = c.radius - d - slack;
+      if (rho2 > outer * outer || (inner > 0.0 && rho2 < inner * inner)) continue;
+    }
+    d = std::min(d, distance(k, p));
   }
   return d;
 }
 
-bool inside(const Component& component, Point p) {
+bool inside(const std::vector<Piece>& boundary, Point p) {
   int n = 0;
-  for (const Curve& c : component.outer.curves) n += crossings(c, p);
-  for (const Loop& h : component.holes) {
-    for (const Curve& c : h.curves) n += crossings(c, p);
-  }
+  for (const Piece& k : boundary) n += crossings(k, p);
   return n % 2 == 1;
 }
+
+}  // namespace
+
+double distance(const Curve& c, Point p) { return distance(piece(c), p); }
+
+double distance_to_boundary(const Component& component, Point p) { return distance_to_boundary(pieces(component), p); }
+
+bool inside(const Component& component, Point p) { return inside(pieces(component), p); }
 
 InscribedCircle largest_inscribed_circle(const Component& component, double precision) {
   if (!(precision > 0.0)) throw std::invalid_argument("inscribed circle: precision must be positive");
@@ -90,8 +128,9 @@ InscribedCircle largest_inscribed_circle(const Component& component, double prec
     double d;      // signed distance at the centre (negative outside)
     double bound;  // no point of the cell is farther than this from the boundary
   };
+  const std::vector<Piece> boundary = pieces(component);
   auto make = [&](Point c, double h) {
-    const double d = (inside(component, c) ? 1.0 : -1.0) * distance_to_boundary(component, c);
+    const double d = (inside(boundary, c) ? 1.0 : -1.0) * distance_to_boundary(boundary, c);
     return Cell{c, h, d, d + h * std::numbers::sqrt2};
   };
   auto worse = [](const Cell& a, const Cell& x) { return a.bound < x.bound; };
