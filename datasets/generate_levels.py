@@ -58,11 +58,11 @@ for ratio in (2,):
 # angle stays below 15 deg, and where dq/dP is conditioned better than 3
 # (docs/theory/level_sets.md, MOMA; [Vasilic] gives no criteria figure).
 base = json.load(open(os.path.join(here, "moma_m1_gm5_l180.json")))
-write("moma_m1_gm5_l180_alpha15",
+write("moma_criteria_m1_gm5_l180_alpha15",
       derived(base, "MOMA M1 (gamma = -5 deg), l = 180 mm, pressure angle <= 15 deg",
               {"max_pressure_angle_deg": 15.0},
               "Fig. 2b configuration; sub-level set of the rods' pressure angle (not in the paper)"))
-write("moma_m1_gm5_l180_kappa3",
+write("moma_criteria_m1_gm5_l180_kappa3",
       derived(base, "MOMA M1 (gamma = -5 deg), l = 180 mm, condition number <= 3",
               {"max_condition_number": 3.0},
               "Fig. 2b configuration; sub-level set of the condition number of dq/dP (not in the paper)"))

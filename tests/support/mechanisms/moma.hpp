@@ -15,7 +15,8 @@
 namespace pkmws::test::moma {
 
 /// The bundled MOMA configurations (datasets/moma_*.json), sorted.
-inline std::vector<std::filesystem::path> moma_datasets() { return dataset_files("moma_"); }
+// The configurations of the program of building (moma_m<k>_..., not the derived criteria files).
+inline std::vector<std::filesystem::path> moma_datasets() { return dataset_files("moma_m"); }
 
 inline const mechanisms::Moma& as_moma(const io::MechanismFile& f) { return dynamic_cast<const mechanisms::Moma&>(*f.model); }
 
