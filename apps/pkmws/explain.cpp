@@ -12,10 +12,7 @@ namespace pkmws::cli {
 
 namespace {
 
-// Pair labels as drawn and printed: "rod1 / housing2", "rod1 ∠ rod2" for the link angle.
-std::string pair_label(const std::string& a, const std::string& b, const std::string& kind) {
-  return kind == "link_angle" ? a + " ∠ " + b : a + " / " + b;
-}
+using report::pair_label;
 
 // Four significant digits without an exponent ("10410", "880.5", "0.02342").
 std::string sig4(double v) {
@@ -48,51 +45,6 @@ Json collisions_json(const io::MechanismFile& file, geometry::Point p) {
   out["pairs"] = pairs;
   if (!check.reachable) out["reason"] = "not in the reachable workspace (inverse kinematics or a stroke fails)";
   return out;
-}
-
-bodies::RealWorkspace real_workspace_of(const io::MechanismFile& file, const geometry::Region& reachable, int depth) {
-  bodies::InterferenceOptions options;
-  options.max_depth = depth;
-  return bodies::real_workspace(*file.bodies, reachable, options);
-}
-
-Json real_workspace_json(const bodies::RealWorkspace& real) {
-  Json out;
-  out["reachable_area"] = real.reachable.area_lower;
-  out["real_area"] = real.real.area_estimate();
-  out["real_area_lower"] = real.real.area_lower;
-  out["real_area_upper"] = real.real.area_upper;
-  out["real_method"] = real.real.method();
-  Json list = Json::array();
-  for (const auto& i : real.interference) {
-    list.push_back({{"parts", {i.a, i.b}},
-                    {"kind", i.kind},
-                    {"method", i.region.method()},
-                    {"area_lower", i.region.area_lower},
-                    {"area_upper", i.region.area_upper}});
-  }
-  out["interference"] = list;
-  return out;
-}
-
-void print_real_workspace(const bodies::RealWorkspace& real, const std::string& unit) {
-  const auto& r = real.real;
-  std::printf("reachable  %.15g %s  (exact)\n", real.reachable.area_lower, unit.c_str());
-  if (r.exact) {
-    std::printf("real       %.15g %s  (exact: reachable minus interference)\n", r.area_lower, unit.c_str());
-  } else {
-    std::printf("real       %.10g %s  (certified: %.10g <= area <= %.10g)\n", r.area_estimate(), unit.c_str(),
-                r.area_lower, r.area_upper);
-  }
-  std::printf("interference (per pair, %s):\n", unit.c_str());
-  for (const auto& i : real.interference) {
-    const std::string label = pair_label(i.a, i.b, i.kind);
-    if (i.region.exact) {
-      std::printf("  %-28s %.10g  (exact)\n", label.c_str(), i.region.area_lower);
-    } else {
-      std::printf("  %-28s %.10g .. %.10g  (certified)\n", label.c_str(), i.region.area_lower, i.region.area_upper);
-    }
-  }
 }
 
 std::vector<io::FigureOptions::Overlay> real_workspace_overlays(const bodies::RealWorkspace& real,

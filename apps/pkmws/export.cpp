@@ -5,6 +5,7 @@
 #include "bodies_cli.hpp"
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/export.hpp"
+#include "pkmws/pkmws.hpp"
 
 namespace pkmws::cli {
 
@@ -105,8 +106,10 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       // (criteria files: the certified limited region; bodies: the real workspace).
       const std::string content = work.finish_by_deadline(
           [&] {
-            const AreaResult result = compute_area(mech, 7, &work);
-            if (result.report.contains("stopped")) refuse_stopped();
+            report::AreaOptions options;
+            options.budget = work.budget();
+            const report::AreaReport result = report::area(mech, options);
+            if (!result.stopped.empty()) refuse_stopped();
             return file_figure(mech, result);
           },
           refusal);
@@ -144,7 +147,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
             if (lw.detail.stopped) refuse_stopped();
             enclosure = lw.region;
           } else {
-            enclosure = workspace_enclosure_of(mech);
+            enclosure = pkmws::workspace(mech);
           }
           require_bound(a->real || !enclosure.exact);
           const std::string bound = !a->bound.empty() ? a->bound : a->real ? "inner" : "outer";
@@ -162,7 +165,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
           }
           if (a->real) {
             // Real = reachable − interference: an enclosure even when reachable is exact.
-            const auto real = real_workspace_of(mech, region, 7).real;
+            const auto real = report::real_workspace(mech, region, 7).real;
             region = bound == "inner" ? real.inner : real.outer;
             options.bound = bound == "inner" ? io::Bound::inner : io::Bound::outer;
             options.area_lower = real.area_lower;

@@ -11,12 +11,12 @@ namespace pkmws::cli {
 namespace {
 
 // "pressure angle ≤ 40°, reaction ≤ 200 N" from the report's `criteria`.
-std::string limits_text(const Json& criteria) {
+std::string limits_text(const std::vector<report::CriterionLimit>& criteria) {
   std::string out;
   for (const auto& c : criteria) {
-    const std::string name = c["criterion"].get<std::string>();
+    const std::string& name = c.criterion;
     char buf[96];
-    const double t = c["threshold"].get<double>();
+    const double t = c.threshold;
     if (name == "pressure_angle") std::snprintf(buf, sizeof buf, "pressure angle \u2264 %g\u00b0", t);
     else if (name == "reaction") std::snprintf(buf, sizeof buf, "reaction \u2264 %g N", t);
     else if (name == "velocity_ratio") std::snprintf(buf, sizeof buf, "velocity ratio \u2264 %g", t);
@@ -29,10 +29,9 @@ std::string limits_text(const Json& criteria) {
 
 }  // namespace
 
-std::string file_figure(const io::MechanismFile& mech, const AreaResult& result) {
+std::string file_figure(const io::MechanismFile& mech, const report::AreaReport& result) {
   const std::string unit = area_unit(mech);
-  const Json& rep = result.report;
-  const double lo = rep["area_lower"], hi = rep["area_upper"];
+  const double lo = result.area_lower, hi = result.area_upper;
   io::FigureOptions f;
   f.title = mech.name;
   std::string caption;
@@ -52,7 +51,7 @@ std::string file_figure(const io::MechanismFile& mech, const AreaResult& result)
     limited.stroke = "#8b1a1a";
     limited.stroke_px = 1.6;
     limited.css_class = "limited";
-    const std::string limits = limits_text(rep["criteria"]);
+    const std::string limits = limits_text(result.criteria);
     limited.legend = limits + ": inner bound drawn";
     f.overlays.push_back(limited);
     pose_region = io::largest_ring_region(limited.rings, reachable);
@@ -74,8 +73,8 @@ std::string file_figure(const io::MechanismFile& mech, const AreaResult& result)
               " (filled: the inner enclosure, certainly reachable; grey: undecided cells, outer minus inner).";
   } else {
     region = result.enclosure.inner;
-    const std::size_t n = rep["components"].size();
-    caption = "Exact workspace area = " + format_g(rep["area"].get<double>()) + " " + unit + " (" + std::to_string(n) +
+    const std::size_t n = result.components.size();
+    caption = "Exact workspace area = " + format_g(result.area) + " " + unit + " (" + std::to_string(n) +
               " component" + (n == 1 ? "" : "s") + ").";
   }
   if (pose_region.empty()) pose_region = region;

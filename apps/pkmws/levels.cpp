@@ -159,34 +159,6 @@ std::string bands_export(const io::MechanismFile& mech, const std::string& crite
   return svg ? svg_figure(mech, run) : curves_csv(run, levels);
 }
 
-Json criteria_area_report(const io::MechanismFile& mech, double tolerance, const CertifiedWork* work,
-                          criteria::LimitedWorkspace* limited) {
-  const auto limits = criteria::file_limits(mech);
-  certified::LevelSetOptions o;
-  o.relative_tolerance = tolerance;
-  criteria::LimitedWorkspace lw = criteria::limited_workspace(mech, limits, work ? work->options(o) : o);
-  Json report;
-  report["name"] = mech.name;
-  report["mechanism"] = mech.mechanism;
-  report["units"] = mech.units;
-  report["method"] = "certified";
-  report["area"] = lw.region.area_estimate();
-  report["area_lower"] = lw.region.area_lower;
-  report["area_upper"] = lw.region.area_upper;
-  Json lim = Json::array();
-  for (const auto& l : limits) lim.push_back({{"criterion", l.name}, {"threshold", l.threshold}});
-  report["criteria"] = lim;
-  report["components"] = Json::array();  // not enumerated for certified level sets (see docs/theory/level_sets.md)
-  report["traced_cells"] = lw.detail.traced_cells;
-  report["undecided_cells"] = lw.detail.undecided_cells;
-  report["curve_points"] = lw.detail.curve_points;
-  report["time_ms"] = lw.time_ms;
-  if (lw.detail.stopped && work) report["stopped"] = work->stopped_note();
-  if (!lw.note.empty()) report["note"] = lw.note;
-  if (limited) *limited = std::move(lw);
-  return report;
-}
-
 void add_levels(CLI::App& app, std::vector<Command>& commands) {
   auto* sub = app.add_subcommand("levels", "Bands of a criterion with certified areas ([Briot] figs. 9-13)");
   struct Args {
