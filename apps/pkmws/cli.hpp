@@ -77,11 +77,8 @@ class CertifiedWork {
 /// Adds `--max-time SECONDS` (a positive number) to a certified command.
 void add_max_time_option(CLI::App* sub, double& seconds);
 
-/// What `pkmws levels` writes for a criterion at increasing levels "a,b,c":
-/// the band figure (svg) or the traced level curves (csv: level, piece, x, y).
-/// With `work`, bounded by its deadline; `stopped` (if given) says whether it was reached.
-std::string bands_export(const io::MechanismFile& mech, const std::string& criterion, const std::string& levels,
-                         bool svg, double tolerance, const CertifiedWork* work = nullptr, bool* stopped = nullptr);
+/// The thresholds of `--levels a,b,c`: decimal numbers, increasing (levels.cpp).
+std::vector<double> parse_levels(const std::string& text);
 /// Writes the curve charts of a 1-DOF file into `dir`; returns the file names.
 std::vector<std::string> write_curve_figures(const io::MechanismFile& mech, const std::string& dir);
 

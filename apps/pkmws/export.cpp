@@ -6,6 +6,7 @@
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/export.hpp"
 #include "pkmws/pkmws.hpp"
+#include "pkmws/report/levels.hpp"
 
 namespace pkmws::cli {
 
@@ -86,11 +87,14 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       const io::MechanismFile mech = io::load_mechanism(a->file);
       const std::string content = work.finish_by_deadline(
           [&] {
-            bool stopped = false;
-            std::string c =
-                bands_export(mech, a->criterion, a->levels, format == io::ExportFormat::svg, 1e-4, &work, &stopped);
-            if (stopped) refuse_stopped();
-            return c;
+            report::LevelsOptions options;
+            options.criterion = a->criterion;
+            options.levels = parse_levels(a->levels);
+            options.tolerance = 1e-4;
+            options.budget = work.budget();
+            const report::LevelsReport run = report::levels(mech, options);
+            if (run.stopped) refuse_stopped();
+            return format == io::ExportFormat::svg ? report::band_figure(mech, run) : report::level_curves_csv(run);
           },
           refusal);
       io::write_file_atomic(a->out, content);
