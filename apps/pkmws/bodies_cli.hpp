@@ -1,5 +1,5 @@
 // The real workspace on the command line (docs/format.md (bodies)): `pkmws explain`, and the
-// pieces `export` and `eval` use when a file lists `bodies` (the numbers: pkmws/report/area.hpp).
+// figure pieces `export` and `batch` draw when a file lists `bodies` (the numbers: pkmws/report).
 #pragma once
 
 #include <optional>
@@ -13,10 +13,6 @@
 namespace pkmws::cli {
 
 void add_explain(CLI::App& app, std::vector<Command>& commands);
-
-/// Which parts collide at platform point p (the pose-level test), as JSON:
-/// reachable, collides, collisions ["a / b", ...], pairs [{parts, kind, clearance, collides}].
-Json collisions_json(const io::MechanismFile& file, geometry::Point p);
 
 /// The figure overlays: interference regions hatched and tagged by pair (legend: the pair and its
 /// certified area in `area_unit`), the real workspace outlined in black.

@@ -114,8 +114,4 @@ void strict_numeric_options(CLI::App& app);
 
 using report::area_unit;
 using report::sample_pose;
-/// The joints of the file's mechanism (docs/format.md (output vocabulary)):
-/// `joint_names` (in the order `dk` takes them) and `joint_units` (name -> "deg"
-/// or the file's length unit).
-Json joint_vocabulary(const io::MechanismFile& file);
 }  // namespace pkmws::cli

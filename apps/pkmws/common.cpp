@@ -284,13 +284,4 @@ void add_max_time_option(CLI::App* sub, double& seconds) {
       ->check(CLI::PositiveNumber);
 }
 
-Json joint_vocabulary(const io::MechanismFile& file) {
-  Json names = Json::array(), units = Json::object();
-  for (const auto& j : file.model->joints()) {
-    names.push_back(j.name);
-    units[j.name] = j.angle ? "deg" : file.units;
-  }
-  return Json{{"joint_names", names}, {"joint_units", units}};
-}
-
 }  // namespace pkmws::cli

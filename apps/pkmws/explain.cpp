@@ -1,12 +1,15 @@
 // pkmws explain FILE X Y [--json]: which parts collide at that platform
-// position (docs/format.md (bodies)), and the real-workspace helpers of area / export / eval.
+// position (docs/format.md (bodies); the report is the library's,
+// pkmws/report/explain.hpp), and the real workspace's figure pieces of export and batch.
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <numbers>
 
 #include "bodies_cli.hpp"
 #include "pkmws/geometry/primitives.hpp"
 #include "pkmws/io/export.hpp"
+#include "pkmws/report/explain.hpp"
 
 namespace pkmws::cli {
 
@@ -26,26 +29,6 @@ const std::vector<std::string> kPalette = {"#1f77b4", "#ff7f0e", "#2ca02c", "#94
                                            "#e377c2", "#17becf", "#bcbd22", "#7f7f7f", "#d62728"};
 
 }  // namespace
-
-Json collisions_json(const io::MechanismFile& file, geometry::Point p) {
-  const auto check = bodies::check_pose(*file.bodies, p);
-  Json out{{"reachable", check.reachable}, {"collides", check.collides()}};
-  Json hits = Json::array(), pairs = Json::array();
-  for (const auto& c : check.contacts) {
-    Json j{{"parts", {c.a, c.b}}, {"kind", c.kind}, {"collides", c.collides}};
-    if (c.kind == "link_angle") {
-      j["angle_margin_deg"] = c.clearance * 180.0 / std::numbers::pi;
-    } else {
-      j["clearance"] = c.clearance;
-    }
-    pairs.push_back(j);
-    if (c.collides) hits.push_back(pair_label(c.a, c.b, c.kind));
-  }
-  out["collisions"] = hits;
-  out["pairs"] = pairs;
-  if (!check.reachable) out["reason"] = "not in the reachable workspace (inverse kinematics or a stroke fails)";
-  return out;
-}
 
 std::vector<io::FigureOptions::Overlay> real_workspace_overlays(const bodies::RealWorkspace& real,
                                                                 const std::string& area_unit) {
@@ -157,33 +140,8 @@ void add_explain(CLI::App& app, std::vector<Command>& commands) {
   sub->add_flag("--json", a->json, "Print one JSON object");
   commands.push_back({sub, [a] {
     const double x = parse_length(a->x, "X"), y = parse_length(a->y, "Y");
-    const io::MechanismFile mech = io::load_mechanism(a->file);
-    if (!mech.bodies) throw io::InputError(a->file + ": the file lists no `bodies` (docs/format.md (bodies)): nothing can collide");
-    Json out = collisions_json(mech, {x, y});
-    out["name"] = mech.name;
-    out["mechanism"] = mech.mechanism;
-    out["point"] = {x, y};
-    out["units"] = mech.units;
-    if (a->json) {
-      print_json(out);
-      return 0;
-    }
-    std::printf("%s at (%.6g, %.6g) %s\n", mech.name.c_str(), x, y, mech.units.c_str());
-    if (!out["reachable"].get<bool>()) {
-      std::printf("not reachable: %s\n", out["reason"].get<std::string>().c_str());
-      return 0;
-    }
-    std::printf("%s\n", out["collides"].get<bool>() ? "COLLISION" : "no collision");
-    for (const auto& p : out["pairs"]) {
-      const std::string label = pair_label(p["parts"][0], p["parts"][1], p["kind"]);
-      if (p["kind"] == "link_angle") {
-        std::printf("  %-28s %s  angle %+.4g deg from the minimum\n", label.c_str(),
-                    p["collides"].get<bool>() ? "collide" : "clear  ", p["angle_margin_deg"].get<double>());
-      } else {
-        std::printf("  %-28s %s  clearance %+.6g %s\n", label.c_str(), p["collides"].get<bool>() ? "collide" : "clear  ",
-                    p["clearance"].get<double>(), mech.units.c_str());
-      }
-    }
+    const report::ExplainReport r = report::explain(io::load_mechanism(a->file), {x, y});
+    std::cout << (a->json ? report::to_json_text(r) + "\n" : report::to_text(r));
     return 0;
   }});
 }

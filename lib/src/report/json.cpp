@@ -36,11 +36,11 @@ Json point_json(geometry::Point p) { return Json::array({p.x, p.y}); }
 
 Json box_json(const geometry::Box& b) { return Json{{"min", point_json(b.min)}, {"max", point_json(b.max)}}; }
 
-Json joint_vocabulary(const io::MechanismFile& file) {
+Json joint_vocabulary(const std::vector<mechanisms::JointInfo>& joints, const std::string& length_unit) {
   Json names = Json::array(), units = Json::object();
-  for (const auto& j : file.model->joints()) {
+  for (const auto& j : joints) {
     names.push_back(j.name);
-    units[j.name] = j.angle ? "deg" : file.units;
+    units[j.name] = j.angle ? "deg" : length_unit;
   }
   return Json{{"joint_names", names}, {"joint_units", units}};
 }

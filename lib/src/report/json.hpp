@@ -3,11 +3,16 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "pkmws/geometry/types.hpp"
-#include "pkmws/io/mechanism_file.hpp"
+#include "pkmws/mechanisms/mechanism.hpp"
+
+namespace pkmws::report {
+struct ExplainReport;  // pkmws/report/explain.hpp
+}
 
 namespace pkmws::report::detail {
 
@@ -23,7 +28,11 @@ Json point_json(geometry::Point p);
 Json box_json(const geometry::Box& b);
 
 /// `joint_names` (in the order `dk` takes them) and `joint_units` (name ->
-/// "deg" or the file's length unit) of docs/format.md (output vocabulary).
-Json joint_vocabulary(const io::MechanismFile& file);
+/// "deg" or the file's length unit `units`) of docs/format.md (output vocabulary).
+Json joint_vocabulary(const std::vector<mechanisms::JointInfo>& joints, const std::string& units);
+
+/// The pose-level collision test as `explain` and `eval` report it: reachable,
+/// collides, collisions ["a / b", ...], pairs [{parts, kind, clearance, collides}].
+Json collisions_json(const ExplainReport& report);
 
 }  // namespace pkmws::report::detail
