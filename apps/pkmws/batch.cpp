@@ -8,9 +8,10 @@
 #include <filesystem>
 #include <iostream>
 
-#include "bodies_cli.hpp"
 #include "cli.hpp"
+#include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/export.hpp"
+#include "pkmws/report/figure.hpp"
 
 namespace pkmws::cli {
 
@@ -92,7 +93,7 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
                result.real->real.method() + ")";
       }
       const std::string svg = stem + ".svg";
-      io::write_file_atomic(fs::path(a->out) / svg, file_figure(mech, result));
+      io::write_file_atomic(fs::path(a->out) / svg, report::area_figure(mech, result));
       row["figure"] = svg;
       rows.push_back(row);
       const std::string bounds = method == "exact" ? "exact" : io::interval_text(lo, hi, 10);

@@ -45,6 +45,7 @@ void add_diff(CLI::App& app, std::vector<Command>& commands);     // two designs
 void add_chart(CLI::App& app, std::vector<Command>& commands);    // line charts and tables of sweeps (chart.cpp)
 void add_optimize(CLI::App& app, std::vector<Command>& commands); // design synthesis (optimize.cpp)
 void add_feasible(CLI::App& app, std::vector<Command>& commands); // feasible boxes of a sweep (optimize.cpp)
+void add_explain(CLI::App& app, std::vector<Command>& commands);  // collisions at a pose (explain.cpp)
 /// The bound of a certified computation (`--max-time SECONDS`) and its progress
 /// line: on stderr, when stderr is a terminal and the work has run for more
 /// than a second, rewritten in place and erased at the end.

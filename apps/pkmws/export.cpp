@@ -2,10 +2,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "bodies_cli.hpp"
+#include "cli.hpp"
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/export.hpp"
 #include "pkmws/pkmws.hpp"
+#include "pkmws/report/figure.hpp"
 #include "pkmws/report/levels.hpp"
 
 namespace pkmws::cli {
@@ -114,7 +115,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
             options.budget = work.budget();
             const report::AreaReport result = report::area(mech, options);
             if (!result.stopped.empty()) refuse_stopped();
-            return file_figure(mech, result);
+            return report::area_figure(mech, result);
           },
           refusal);
       io::write_file_atomic(a->out, content);
@@ -179,14 +180,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
           std::string text;
           if (format == io::ExportFormat::svg && !a->bare) {
             // --real: the real workspace's inner enclosure (the figure without --real draws it outlined).
-            io::FigureOptions figure;
-            figure.title = mech.name;
-            figure.region_legend = "real workspace (inner enclosure)";
-            figure.caption = "Inner enclosure of the real workspace (certainly reachable without collision): area " +
-                             format_g(region.area()) + " " + area_unit(mech) + ".";
-            const mechanisms::Pose pose = sample_pose(mech, region);
-            figure.parts = figure_parts(mech, {pose.x, pose.y});
-            text = io::workspace_figure(mech, region, pose, figure);
+            text = report::real_workspace_figure(mech, region);
           } else {
             text = io::to_format(region, format, options);
           }
