@@ -8,9 +8,10 @@
 #include <filesystem>
 #include <iostream>
 
-#include "bodies_cli.hpp"
 #include "cli.hpp"
+#include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/export.hpp"
+#include "pkmws/report/figure.hpp"
 
 namespace pkmws::cli {
 
@@ -51,9 +52,9 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
     for (const auto& mech : mechs) {
       const std::string stem = fs::path(mech.path).stem().string();
       Json row{{"file", mech.path}, {"name", mech.name}, {"mechanism", mech.mechanism}};
-      AreaResult result;
+      report::AreaReport result;
       try {
-        result = compute_area(mech, 7);
+        result = report::area(mech);
       } catch (const std::exception& e) {
         row["note"] = e.what();
         std::string links;
@@ -67,10 +68,10 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
               links + " | |\n";
         continue;
       }
-      const Json& rep = result.report;
+      // The numbers of `pkmws area --json`, under the same names.
+      const Json rep = Json::parse(report::to_json_text(result));
       const double area = rep["area"], lo = rep["area_lower"], hi = rep["area_upper"];
       const std::string method = rep["method"];
-      // The numbers of `pkmws area --json`, under the same names.
       for (const char* key : {"area", "area_lower", "area_upper", "method", "time_ms", "criteria", "real_area",
                               "real_area_lower", "real_area_upper", "real_method"}) {
         if (rep.contains(key)) row[key] = rep[key];
@@ -92,7 +93,7 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
                result.real->real.method() + ")";
       }
       const std::string svg = stem + ".svg";
-      io::write_file_atomic(fs::path(a->out) / svg, file_figure(mech, result));
+      io::write_file_atomic(fs::path(a->out) / svg, report::area_figure(mech, result));
       row["figure"] = svg;
       rows.push_back(row);
       const std::string bounds = method == "exact" ? "exact" : io::interval_text(lo, hi, 10);
@@ -105,7 +106,7 @@ void add_batch(CLI::App& app, std::vector<Command>& commands) {
                     method == "exact" ? "exact" : ("certified " + io::interval_text(lo, hi, 10)).c_str());
       }
     }
-    md += std::string("\ncompute time: ") + kComputeTimeMeaning +
+    md += std::string("\ncompute time: ") + report::kComputeTimeMeaning +
           " (the `time_ms` of `pkmws area --json`, one file at a time).\n";
     io::write_file_atomic(fs::path(a->out) / "summary.md", md);
     io::write_file_atomic(fs::path(a->out) / "summary.json", rows.dump(2) + "\n");

@@ -14,6 +14,7 @@
 #include "pkmws/certified/level_set.hpp"
 #include "pkmws/geometry/region.hpp"
 #include "pkmws/io/mechanism_file.hpp"
+#include "pkmws/report/common.hpp"
 
 namespace pkmws::criteria {
 struct LimitedWorkspace;  // pkmws/criteria/fields.hpp
@@ -44,6 +45,7 @@ void add_diff(CLI::App& app, std::vector<Command>& commands);     // two designs
 void add_chart(CLI::App& app, std::vector<Command>& commands);    // line charts and tables of sweeps (chart.cpp)
 void add_optimize(CLI::App& app, std::vector<Command>& commands); // design synthesis (optimize.cpp)
 void add_feasible(CLI::App& app, std::vector<Command>& commands); // feasible boxes of a sweep (optimize.cpp)
+void add_explain(CLI::App& app, std::vector<Command>& commands);  // collisions at a pose (explain.cpp)
 /// The bound of a certified computation (`--max-time SECONDS`) and its progress
 /// line: on stderr, when stderr is a terminal and the work has run for more
 /// than a second, rewritten in place and erased at the end.
@@ -58,6 +60,8 @@ class CertifiedWork {
   certified::LevelSetOptions options(certified::LevelSetOptions o, const std::string& stage = "") const;
   /// What a result cut short by the deadline says about itself.
   std::string stopped_note() const;
+  /// The deadline and progress line as the report layer takes them (this object must outlive its use).
+  report::Budget budget() const;
   double max_seconds() const { return max_seconds_; }
   /// Runs `job`, work that cannot stop part-way (the exact Boolean operations
   /// that turn certified cells into an exported region, the file's content),
@@ -74,17 +78,8 @@ class CertifiedWork {
 /// Adds `--max-time SECONDS` (a positive number) to a certified command.
 void add_max_time_option(CLI::App* sub, double& seconds);
 
-/// `pkmws area` for a file with `criteria` limits: certified area bounds of the
-/// limited workspace (levels.cpp); `tolerance` relative to the area. With
-/// `work`, bounded by its deadline (the report then has `stopped`). The
-/// certified pieces behind it go to `*limited` when given (for figures).
-Json criteria_area_report(const io::MechanismFile& mech, double tolerance, const CertifiedWork* work = nullptr,
-                          criteria::LimitedWorkspace* limited = nullptr);
-/// What `pkmws levels` writes for a criterion at increasing levels "a,b,c":
-/// the band figure (svg) or the traced level curves (csv: level, piece, x, y).
-/// With `work`, bounded by its deadline; `stopped` (if given) says whether it was reached.
-std::string bands_export(const io::MechanismFile& mech, const std::string& criterion, const std::string& levels,
-                         bool svg, double tolerance, const CertifiedWork* work = nullptr, bool* stopped = nullptr);
+/// The thresholds of `--levels a,b,c`: decimal numbers, increasing (levels.cpp).
+std::vector<double> parse_levels(const std::string& text);
 /// Writes the curve charts of a 1-DOF file into `dir`; returns the file names.
 std::vector<std::string> write_curve_figures(const io::MechanismFile& mech, const std::string& dir);
 
@@ -118,26 +113,6 @@ double parse_angle(const std::string& text, const std::string& what);
 /// parse_number (CLI11 alone takes "0x10", " 1" and "010" = 8).
 void strict_numeric_options(CLI::App& app);
 
-/// The file's exact workspace, or throws io::InputError when the mechanism has
-/// none (e.g. a lone Pi-joint) with the mechanism's reason.
-geometry::Region workspace_of(const io::MechanismFile& file);
-/// The workspace as an enclosure (exact, or certified where the boundary is
-/// not made of arcs and segments); errors become InputError with the path.
-certified::CertifiedRegion workspace_enclosure_of(const io::MechanismFile& file);
-/// A pose inside the workspace for drawing the mechanism (largest component's
-/// centroid when inside, else the centre of its largest inscribed circle).
-mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Region& region);
-/// Area, components and their figures, as in `pkmws area --json`; the
-/// inscribed rectangle to a relative width of `rectangle_precision`.
-/// With `inside` (a certified enclosure's inner region), each component's
-/// rectangle is searched there, so that it fits the true workspace.
-Json region_report(const geometry::Region& region, double min_area, double rectangle_precision = 1e-6,
-                   const geometry::Region* inside = nullptr);
-/// The joints of the file's mechanism (docs/format.md (output vocabulary)):
-/// `joint_names` (in the order `dk` takes them) and `joint_units` (name -> "deg"
-/// or the file's length unit).
-Json joint_vocabulary(const io::MechanismFile& file);
-/// Length unit squared, e.g. "mm²".
-std::string area_unit(const io::MechanismFile& file);
-
+using report::area_unit;
+using report::sample_pose;
 }  // namespace pkmws::cli

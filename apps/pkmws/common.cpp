@@ -8,12 +8,9 @@
 #include <cstdlib>
 #include <iostream>
 #include <mutex>
-#include <numbers>
 #include <optional>
 
 #include "cli.hpp"
-#include "pkmws/geometry/inscribed.hpp"
-#include "pkmws/geometry/inscribed_rectangle.hpp"
 #include "pkmws/io/export.hpp"
 
 namespace pkmws::cli {
@@ -250,6 +247,11 @@ std::string CertifiedWork::stopped_note() const {
   return buf;
 }
 
+report::Budget CertifiedWork::budget() const {
+  return {[this](certified::LevelSetOptions o, const std::string& stage) { return options(std::move(o), stage); },
+          stopped_note()};
+}
+
 std::string CertifiedWork::finish_by_deadline(const std::function<std::string()>& job,
                                              const std::string& refusal) const {
   if (!(max_seconds_ > 0.0)) return job();
@@ -280,127 +282,6 @@ void add_max_time_option(CLI::App* sub, double& seconds) {
                   "Stop refining after SECONDS: the certified bounds reached so far, labelled `stopped` "
                   "(default: no bound; a progress line on a terminal)")
       ->check(CLI::PositiveNumber);
-}
-
-geometry::Region workspace_of(const io::MechanismFile& file) {
-  try {
-    return file.model->workspace();
-  } catch (const std::exception& e) {
-    throw io::InputError(file.path + ": " + e.what());
-  }
-}
-
-certified::CertifiedRegion workspace_enclosure_of(const io::MechanismFile& file) {
-  try {
-    return file.model->workspace_enclosure();
-  } catch (const std::exception& e) {
-    throw io::InputError(file.path + ": " + e.what());
-  }
-}
-
-Json joint_vocabulary(const io::MechanismFile& file) {
-  Json names = Json::array(), units = Json::object();
-  for (const auto& j : file.model->joints()) {
-    names.push_back(j.name);
-    units[j.name] = j.angle ? "deg" : file.units;
-  }
-  return Json{{"joint_names", names}, {"joint_units", units}};
-}
-
-std::string area_unit(const io::MechanismFile& file) { return file.units + "²"; }
-
-namespace {
-
-Json point_json(geometry::Point p) { return Json::array({p.x, p.y}); }
-
-Json box_json(const geometry::Box& b) {
-  return Json{{"min", point_json(b.min)}, {"max", point_json(b.max)}};
-}
-
-double precision_for(const geometry::Box& b) { return 1e-5 * std::max(b.width(), b.height()); }
-
-}  // namespace
-
-mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Region& region) {
-  // 3-DOF: the platform at the file's constant orientation (the workspace's).
-  const double phi = file.model->orientation();
-  const auto comps = region.components();
-  if (comps.empty()) {
-    const auto b = file.model->bounds();
-    return {(b.min.x + b.max.x) / 2, (b.min.y + b.max.y) / 2, phi};
-  }
-  std::size_t k = 0;
-  for (std::size_t i = 1; i < comps.size(); ++i) {
-    if (comps[i].area > comps[k].area) k = i;
-  }
-  const auto& c = comps[k];
-  // Candidates: the centroid, the centre of the largest inscribed circle, and
-  // points around it; the first reachable, non-singular pose wins (a drawing at
-  // a singular pose, e.g. DexTAR's centre, hides the mechanism's shape).
-  const auto circle = geometry::largest_inscribed_circle(c, 1e-3 * std::sqrt(c.area));
-  std::vector<geometry::Point> candidates{c.centroid, circle.center};
-  for (int i = 0; i < 8; ++i) {
-    const double a = i * std::numbers::pi / 4 + 0.3;
-    candidates.push_back({circle.center.x + 0.5 * circle.radius * std::cos(a),
-                          circle.center.y + 0.5 * circle.radius * std::sin(a)});
-  }
-  for (const auto& p : candidates) {
-    if (!geometry::inside(c, p) || geometry::distance_to_boundary(c, p) < 0.05 * std::sqrt(c.area)) continue;
-    const mechanisms::Pose pose{p.x, p.y, phi};
-    try {
-      const auto ev = file.model->evaluate(pose, {});
-      if (!ev.empty() && ev.front().reachable && !ev.front().singular) return pose;
-    } catch (const std::exception&) {
-      // a mechanism without evaluate at this pose: try the next candidate
-    }
-  }
-  return {circle.center.x, circle.center.y, phi};
-}
-
-Json rectangle_json(const geometry::InscribedRectangle& r) {
-  return Json{{"box", box_json(r.box)},
-              {"width", r.box.width()},
-              {"height", r.box.height()},
-              {"area", r.area},
-              {"area_upper", r.area_upper},
-              {"verified", r.verified}};
-}
-
-Json region_report(const geometry::Region& region, double min_area, double rectangle_precision,
-                   const geometry::Region* inside) {
-  Json comps = Json::array();
-  double area = 0.0;
-  // Rectangles must fit the true workspace: for a certified enclosure they are
-  // searched in the inner region's components within this component.
-  std::vector<geometry::Component> inner;
-  if (inside) inner = inside->components(io::effective_min_area(*inside, {}));
-  for (const auto& c : region.components(min_area)) {
-    const auto circle = geometry::largest_inscribed_circle(c, precision_for(c.bbox));
-    geometry::InscribedRectangle rect;
-    if (!inside) {
-      rect = geometry::largest_inscribed_rectangle(c, rectangle_precision, {}, &region);
-    } else {
-      for (const auto& k : inner) {
-        if (k.outer.curves.empty() || !geometry::inside(c, k.outer.curves.front().source)) continue;
-        const auto r = geometry::largest_inscribed_rectangle(k, rectangle_precision, {}, inside);
-        if (r.area > rect.area) rect = r;
-        rect.area_upper = std::max(rect.area_upper, r.area_upper);
-      }
-    }
-    comps.push_back(Json{{"area", c.area},
-                         {"perimeter", c.perimeter},
-                         {"holes", c.holes.size()},
-                         {"bbox", box_json(c.bbox)},
-                         {"centroid", point_json(c.centroid)},
-                         {"inscribed_circle",
-                          {{"center", point_json(circle.center)},
-                           {"radius", circle.radius},
-                           {"radius_upper", circle.radius_upper}}},
-                         {"inscribed_rectangle", rectangle_json(rect)}});
-    area += c.area;
-  }
-  return Json{{"area", area}, {"components", comps}, {"bbox", box_json(region.bbox())},
-              {"boundary_curves", region.curve_count()}};
 }
 
 }  // namespace pkmws::cli

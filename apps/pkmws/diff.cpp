@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "cli.hpp"
+#include "pkmws/pkmws.hpp"
 #include "pkmws/design/sweep.hpp"
 #include "pkmws/io/export.hpp"
 #include "pkmws/io/figure.hpp"
@@ -164,8 +165,8 @@ void add_diff(CLI::App& app, std::vector<Command>& commands) {
       throw io::InputError(b.file.path + ": units: \"" + b.file.units + "\" differs from \"" + a.file.units +
                            "\" of " + a.file.path + " (diff compares files in one length unit; convert one)");
     }
-    a.enclosure = workspace_enclosure_of(a.file);
-    b.enclosure = workspace_enclosure_of(b.file);
+    a.enclosure = pkmws::workspace(a.file);
+    b.enclosure = pkmws::workspace(b.file);
     evaluate(a, args->rectangle_precision, args->criteria_tolerance, args->gci_cells);
     evaluate(b, args->rectangle_precision, args->criteria_tolerance, args->gci_cells);
 

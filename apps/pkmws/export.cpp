@@ -2,9 +2,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include "bodies_cli.hpp"
+#include "cli.hpp"
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/export.hpp"
+#include "pkmws/pkmws.hpp"
+#include "pkmws/report/figure.hpp"
+#include "pkmws/report/levels.hpp"
 
 namespace pkmws::cli {
 
@@ -85,11 +88,14 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       const io::MechanismFile mech = io::load_mechanism(a->file);
       const std::string content = work.finish_by_deadline(
           [&] {
-            bool stopped = false;
-            std::string c =
-                bands_export(mech, a->criterion, a->levels, format == io::ExportFormat::svg, 1e-4, &work, &stopped);
-            if (stopped) refuse_stopped();
-            return c;
+            report::LevelsOptions options;
+            options.criterion = a->criterion;
+            options.levels = parse_levels(a->levels);
+            options.tolerance = 1e-4;
+            options.budget = work.budget();
+            const report::LevelsReport run = report::levels(mech, options);
+            if (run.stopped) refuse_stopped();
+            return format == io::ExportFormat::svg ? report::band_figure(mech, run) : report::level_curves_csv(run);
           },
           refusal);
       io::write_file_atomic(a->out, content);
@@ -105,9 +111,11 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
       // (criteria files: the certified limited region; bodies: the real workspace).
       const std::string content = work.finish_by_deadline(
           [&] {
-            const AreaResult result = compute_area(mech, 7, &work);
-            if (result.report.contains("stopped")) refuse_stopped();
-            return file_figure(mech, result);
+            report::AreaOptions options;
+            options.budget = work.budget();
+            const report::AreaReport result = report::area(mech, options);
+            if (!result.stopped.empty()) refuse_stopped();
+            return report::area_figure(mech, result);
           },
           refusal);
       io::write_file_atomic(a->out, content);
@@ -144,7 +152,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
             if (lw.detail.stopped) refuse_stopped();
             enclosure = lw.region;
           } else {
-            enclosure = workspace_enclosure_of(mech);
+            enclosure = pkmws::workspace(mech);
           }
           require_bound(a->real || !enclosure.exact);
           const std::string bound = !a->bound.empty() ? a->bound : a->real ? "inner" : "outer";
@@ -162,7 +170,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
           }
           if (a->real) {
             // Real = reachable − interference: an enclosure even when reachable is exact.
-            const auto real = real_workspace_of(mech, region, 7).real;
+            const auto real = report::real_workspace(mech, region, 7).real;
             region = bound == "inner" ? real.inner : real.outer;
             options.bound = bound == "inner" ? io::Bound::inner : io::Bound::outer;
             options.area_lower = real.area_lower;
@@ -172,14 +180,7 @@ void add_export(CLI::App& app, std::vector<Command>& commands) {
           std::string text;
           if (format == io::ExportFormat::svg && !a->bare) {
             // --real: the real workspace's inner enclosure (the figure without --real draws it outlined).
-            io::FigureOptions figure;
-            figure.title = mech.name;
-            figure.region_legend = "real workspace (inner enclosure)";
-            figure.caption = "Inner enclosure of the real workspace (certainly reachable without collision): area " +
-                             format_g(region.area()) + " " + area_unit(mech) + ".";
-            const mechanisms::Pose pose = sample_pose(mech, region);
-            figure.parts = figure_parts(mech, {pose.x, pose.y});
-            text = io::workspace_figure(mech, region, pose, figure);
+            text = report::real_workspace_figure(mech, region);
           } else {
             text = io::to_format(region, format, options);
           }

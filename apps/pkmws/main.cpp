@@ -3,7 +3,7 @@
 #include <exception>
 #include <iostream>
 
-#include "bodies_cli.hpp"
+#include "cli.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"pkmws: exact workspaces of planar parallel mechanisms", "pkmws"};

@@ -35,6 +35,8 @@
 #include "pkmws/io/mechanism_file.hpp"
 #include "pkmws/io/parameters.hpp"
 #include "pkmws/mechanisms/mechanism.hpp"
+#include "pkmws/pkmws.hpp"
+#include "pkmws/report/area.hpp"
 
 namespace py = pybind11;
 
@@ -352,7 +354,7 @@ py::dict evaluation_py(const mechanisms::Evaluation& e) {
   return d;
 }
 
-py::list evaluate(const PyMechanism& m, double x, double y, std::optional<double> phi) {
+py::list evaluate_modes(const PyMechanism& m, double x, double y, std::optional<double> phi) {
   const auto pose = make_pose(m, x, y, phi);
   std::vector<mechanisms::Evaluation> evs;
   {
@@ -511,12 +513,13 @@ py::object reachable(const PyMechanism& m, const py::handle& poses) {
   return out;
 }
 
+// The front door's workspace, as `pkmws area` takes it (errors name the file).
 certified::CertifiedRegion enclosure(const PyMechanism& m) {
   py::gil_scoped_release release;
-  return guarded(*m.file, [&] { return m.model().workspace_enclosure(); });
+  return pkmws::workspace(*m.file);
 }
 
-PyRegion workspace(const PyMechanism& m, std::optional<std::string> bound) {
+PyRegion workspace_region(const PyMechanism& m, std::optional<std::string> bound) {
   const certified::CertifiedRegion e = enclosure(m);
   if (bound && *bound != "inner" && *bound != "outer") {
     throw InputError("bound: expected 'inner' or 'outer', got '" + *bound + "'");
@@ -533,9 +536,8 @@ py::tuple workspace_area_bounds(const PyMechanism& m) {
   const certified::CertifiedRegion e = enclosure(m);
   if (e.exact) {
     // As `pkmws area`: the double rounding of Green's theorem on the exact boundary.
-    const double area = e.inner.area();
-    const double rounding = 64 * std::numeric_limits<double>::epsilon() * area;
-    return py::make_tuple(area - rounding, area + rounding);
+    const report::AreaBounds b = report::exact_area_bounds(e.inner.area());
+    return py::make_tuple(b.lower, b.upper);
   }
   return py::make_tuple(e.area_lower, e.area_upper);
 }
@@ -836,7 +838,8 @@ PYBIND11_MODULE(_pkmws, mod) {
         py::list out;
         std::size_t k = 0;
         for (const auto& c : r.region.components(io::effective_min_area(r.region, {}))) {
-          const double p = precision ? *precision : 1e-5 * std::max(c.bbox.width(), c.bbox.height());
+          // Default: the precision of `pkmws area`'s inscribed circles.
+          const double p = precision ? *precision : report::inscribed_circle_precision(c.bbox);
           if (!(p > 0.0)) throw InputError("precision: must be positive");
           geometry::InscribedCircle circle;
           {
@@ -935,7 +938,7 @@ PYBIND11_MODULE(_pkmws, mod) {
       .def("direct", &direct, py::arg("q"),
            "Direct kinematics for dof joint values q (file's unit / radians). One dict per assembly mode:\n"
            "mode, pose (x, y, phi in radians), platform_points (3-DOF), valid, reason.")
-      .def("evaluate", &evaluate, py::arg("x"), py::arg("y"), py::arg("phi") = py::none(),
+      .def("evaluate", &evaluate_modes, py::arg("x"), py::arg("y"), py::arg("phi") = py::none(),
            "Every criterion at the pose (as `pkmws eval`), one dict per working mode; angles in radians\n"
            "(pressure_angle per leg), reactions in N with the file's criteria.load.")
       .def("inverse_many", &inverse_many, py::arg("poses"),
@@ -949,7 +952,7 @@ PYBIND11_MODULE(_pkmws, mod) {
            "condition_number, singular, pressure_angle (N, legs; radians), velocity_ratio (NaN: undefined).")
       .def("reachable", &reachable, py::arg("poses"),
            "The grid baseline's double membership test: one pose (x, y[, phi]) -> bool, or (N, 2)/(N, 3) -> bool array.")
-      .def("workspace", &workspace, py::arg("bound") = py::none(),
+      .def("workspace", &workspace_region, py::arg("bound") = py::none(),
            "The exact reachable workspace (3-DOF: at the file's orientation) as a Region, lengths in the\n"
            "file's unit. Certified workspaces (real-scheme biglide) need bound='inner' or 'outer'.")
       .def("workspace_area_bounds", &workspace_area_bounds,

@@ -41,6 +41,12 @@ struct Area {
 /// `relative_tolerance`: the width asked for a certified area, relative to it.
 Area area(const MechanismFile& file, double relative_tolerance = 1e-6);
 
+/// The file's workspace, its criteria limits aside: exact (inner == outer), or
+/// an inner and an outer enclosure where its boundary is not made of arcs and
+/// segments. A mechanism without one (a lone Π-joint): InputError naming the
+/// file, with the mechanism's reason.
+certified::CertifiedRegion workspace(const MechanismFile& file);
+
 /// The region the file describes, as `area` measures it: exact (inner ==
 /// outer) or an inner and an outer enclosure. Criteria-limited regions are
 /// built from their certified cells at `relative_tolerance`.

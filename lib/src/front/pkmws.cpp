@@ -21,7 +21,9 @@ certified::CertifiedRegion limited(const MechanismFile& file, double relative_to
   return criteria::limited_workspace(file, criteria::file_limits(file), options).region;
 }
 
-certified::CertifiedRegion enclosure(const MechanismFile& file) {
+}  // namespace
+
+certified::CertifiedRegion workspace(const MechanismFile& file) {
   try {
     return file.model->workspace_enclosure();
   } catch (const InputError&) {
@@ -31,12 +33,10 @@ certified::CertifiedRegion enclosure(const MechanismFile& file) {
   }
 }
 
-}  // namespace
-
 MechanismFile load(const std::filesystem::path& file) { return io::load_mechanism(file); }
 
 Area area(const MechanismFile& file, double relative_tolerance) {
-  const certified::CertifiedRegion r = has_limits(file) ? limited(file, relative_tolerance, false) : enclosure(file);
+  const certified::CertifiedRegion r = has_limits(file) ? limited(file, relative_tolerance, false) : workspace(file);
   Area a;
   a.lower = r.area_lower;
   a.upper = r.area_upper;
@@ -47,7 +47,7 @@ Area area(const MechanismFile& file, double relative_tolerance) {
 }
 
 certified::CertifiedRegion region(const MechanismFile& file, double relative_tolerance) {
-  return has_limits(file) ? limited(file, relative_tolerance, true) : enclosure(file);
+  return has_limits(file) ? limited(file, relative_tolerance, true) : workspace(file);
 }
 
 std::vector<mechanisms::Evaluation> evaluate(const MechanismFile& file, double x, double y,

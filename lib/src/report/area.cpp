@@ -1,0 +1,258 @@
+// `pkmws area` (pkmws/report/area.hpp): moved from the command line's area.cpp,
+// common.cpp (region_report), levels.cpp (criteria_area_report) and explain.cpp
+// (the real workspace), numbers and JSON unchanged.
+#include "pkmws/report/area.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "pkmws/io/export.hpp"
+#include "pkmws/pkmws.hpp"
+#include "report/json.hpp"
+#include "report/text.hpp"
+
+namespace pkmws::report {
+
+using detail::Json;
+
+namespace {
+
+double elapsed_ms(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Area, components and their figures; the inscribed rectangle to a relative
+// width of `rectangle_precision`. With `inside` (a certified enclosure's inner
+// region), each component's rectangle is searched there, so that it fits the
+// true workspace.
+void region_report(AreaReport& out, const geometry::Region& region, double min_area, double rectangle_precision,
+                   const geometry::Region* inside) {
+  double area = 0.0;
+  // Rectangles must fit the true workspace: for a certified enclosure they are
+  // searched in the inner region's components within this component.
+  std::vector<geometry::Component> inner;
+  if (inside) inner = inside->components(io::effective_min_area(*inside, {}));
+  for (const auto& c : region.components(min_area)) {
+    const auto circle = geometry::largest_inscribed_circle(c, inscribed_circle_precision(c.bbox));
+    geometry::InscribedRectangle rect;
+    if (!inside) {
+      rect = geometry::largest_inscribed_rectangle(c, rectangle_precision, {}, &region);
+    } else {
+      for (const auto& k : inner) {
+        if (k.outer.curves.empty() || !geometry::inside(c, k.outer.curves.front().source)) continue;
+        const auto r = geometry::largest_inscribed_rectangle(k, rectangle_precision, {}, inside);
+        if (r.area > rect.area) rect = r;
+        rect.area_upper = std::max(rect.area_upper, r.area_upper);
+      }
+    }
+    out.components.push_back({c.area, c.perimeter, c.holes.size(), c.bbox, c.centroid, circle, rect});
+    area += c.area;
+  }
+  out.area = area;
+  out.bbox = region.bbox();
+  out.boundary_curves = region.curve_count();
+}
+
+// For a file with `criteria` limits: certified area bounds of the limited
+// workspace (docs/theory/level_sets.md).
+void criteria_area_report(AreaReport& out, const io::MechanismFile& mech, const AreaOptions& options) {
+  const auto limits = criteria::file_limits(mech);
+  certified::LevelSetOptions o;
+  o.relative_tolerance = options.criteria_tolerance;
+  criteria::LimitedWorkspace lw = criteria::limited_workspace(mech, limits, options.budget.apply(o));
+  out.method = "certified";
+  out.area = lw.region.area_estimate();
+  out.area_lower = lw.region.area_lower;
+  out.area_upper = lw.region.area_upper;
+  for (const auto& l : limits) out.criteria.push_back({l.name, l.threshold});
+  if (lw.detail.stopped && options.budget.bound) out.stopped = options.budget.stopped_note;
+  out.note = lw.note;
+  out.enclosure = lw.region;
+  out.limited = std::move(lw);
+}
+
+Json rectangle_json(const geometry::InscribedRectangle& r) {
+  return Json{{"box", detail::box_json(r.box)},
+              {"width", r.box.width()},
+              {"height", r.box.height()},
+              {"area", r.area},
+              {"area_upper", r.area_upper},
+              {"verified", r.verified}};
+}
+
+// `real_area`, `real_area_lower`, `real_area_upper`, `real_method`, `interference` [...].
+Json real_workspace_json(const bodies::RealWorkspace& real) {
+  Json out;
+  out["reachable_area"] = real.reachable.area_lower;
+  out["real_area"] = real.real.area_estimate();
+  out["real_area_lower"] = real.real.area_lower;
+  out["real_area_upper"] = real.real.area_upper;
+  out["real_method"] = real.real.method();
+  Json list = Json::array();
+  for (const auto& i : real.interference) {
+    list.push_back({{"parts", {i.a, i.b}},
+                    {"kind", i.kind},
+                    {"method", i.region.method()},
+                    {"area_lower", i.region.area_lower},
+                    {"area_upper", i.region.area_upper}});
+  }
+  out["interference"] = list;
+  return out;
+}
+
+// The text lines of `pkmws area` for the real workspace (unit: e.g. "mm²").
+std::string real_workspace_text(const bodies::RealWorkspace& real, const std::string& unit) {
+  using detail::format;
+  const auto& r = real.real;
+  std::string t = format("reachable  %.15g %s  (exact)\n", real.reachable.area_lower, unit.c_str());
+  if (r.exact) {
+    t += format("real       %.15g %s  (exact: reachable minus interference)\n", r.area_lower, unit.c_str());
+  } else {
+    t += format("real       %.10g %s  (certified: %.10g <= area <= %.10g)\n", r.area_estimate(), unit.c_str(),
+                r.area_lower, r.area_upper);
+  }
+  t += format("interference (per pair, %s):\n", unit.c_str());
+  for (const auto& i : real.interference) {
+    const std::string label = pair_label(i.a, i.b, i.kind);
+    if (i.region.exact) {
+      t += format("  %-28s %.10g  (exact)\n", label.c_str(), i.region.area_lower);
+    } else {
+      t += format("  %-28s %.10g .. %.10g  (certified)\n", label.c_str(), i.region.area_lower, i.region.area_upper);
+    }
+  }
+  return t;
+}
+
+}  // namespace
+
+double inscribed_circle_precision(const geometry::Box& b) { return 1e-5 * std::max(b.width(), b.height()); }
+
+std::string pair_label(const std::string& a, const std::string& b, const std::string& kind) {
+  return kind == "link_angle" ? a + " ∠ " + b : a + " / " + b;
+}
+
+bodies::RealWorkspace real_workspace(const io::MechanismFile& file, const geometry::Region& reachable, int depth) {
+  bodies::InterferenceOptions options;
+  options.max_depth = depth;
+  return bodies::real_workspace(*file.bodies, reachable, options);
+}
+
+AreaReport area(const io::MechanismFile& mech, const AreaOptions& options) {
+  AreaReport out;
+  out.name = mech.name;
+  out.mechanism = mech.mechanism;
+  out.units = mech.units;
+  const auto start = std::chrono::steady_clock::now();
+  if (mech.criteria.any()) {
+    // Criteria limits: certified level sets (docs/theory/level_sets.md).
+    criteria_area_report(out, mech, options);
+    out.time_ms = elapsed_ms(start);
+    return out;
+  }
+  out.enclosure = pkmws::workspace(mech);
+  // Exact: the region itself. Certified: the outer enclosure's components
+  // (every point of the true workspace is in one of them).
+  const geometry::Region& region = out.enclosure.exact ? out.enclosure.inner : out.enclosure.outer;
+  if (region.empty()) {
+    throw io::InputError(mech.path + ": the workspace is empty (impossible geometry: the legs cannot meet)");
+  }
+  region_report(out, region, io::effective_min_area(region, {}), options.rectangle_precision,
+                out.enclosure.exact ? nullptr : &out.enclosure.inner);
+  out.method = out.enclosure.method();
+  if (out.enclosure.exact) {
+    // Exact boundary: the bounds are the double rounding of Green's theorem.
+    const AreaBounds b = exact_area_bounds(out.area);
+    out.area_lower = b.lower;
+    out.area_upper = b.upper;
+  } else {
+    out.area = out.enclosure.area_estimate();
+    out.area_lower = out.enclosure.area_lower;
+    out.area_upper = out.enclosure.area_upper;
+    out.components_of_outer_enclosure = true;
+  }
+  // docs/format.md (bodies): with bodies, the real workspace = reachable − ∪ interference.
+  if (mech.bodies) out.real = real_workspace(mech, region, options.interference_depth);
+  out.time_ms = elapsed_ms(start);
+  return out;
+}
+
+std::string to_json_text(const AreaReport& r) {
+  Json report;
+  report["name"] = r.name;
+  report["mechanism"] = r.mechanism;
+  report["units"] = r.units;
+  report["method"] = r.method;
+  report["area"] = r.area;
+  report["area_lower"] = r.area_lower;
+  report["area_upper"] = r.area_upper;
+  Json comps = Json::array();
+  for (const auto& c : r.components) {
+    comps.push_back(Json{{"area", c.area},
+                         {"perimeter", c.perimeter},
+                         {"holes", c.holes},
+                         {"bbox", detail::box_json(c.bbox)},
+                         {"centroid", detail::point_json(c.centroid)},
+                         {"inscribed_circle",
+                          {{"center", detail::point_json(c.inscribed_circle.center)},
+                           {"radius", c.inscribed_circle.radius},
+                           {"radius_upper", c.inscribed_circle.radius_upper}}},
+                         {"inscribed_rectangle", rectangle_json(c.inscribed_rectangle)}});
+  }
+  // Criteria files: not enumerated for certified level sets (see docs/theory/level_sets.md).
+  report["components"] = comps;
+  if (r.bbox) {
+    report["bbox"] = detail::box_json(*r.bbox);
+    report["boundary_curves"] = r.boundary_curves;
+  }
+  if (r.components_of_outer_enclosure) report["components_of"] = "outer enclosure";
+  if (r.limited) {
+    Json lim = Json::array();
+    for (const auto& l : r.criteria) lim.push_back({{"criterion", l.criterion}, {"threshold", l.threshold}});
+    report["criteria"] = lim;
+    report["traced_cells"] = r.limited->detail.traced_cells;
+    report["undecided_cells"] = r.limited->detail.undecided_cells;
+    report["curve_points"] = r.limited->detail.curve_points;
+    if (!r.stopped.empty()) report["stopped"] = r.stopped;
+    if (!r.note.empty()) report["note"] = r.note;
+  }
+  if (r.real) report.update(real_workspace_json(*r.real));
+  report["time_ms"] = r.time_ms;
+  return detail::json_text(std::move(report));
+}
+
+std::string to_text(const AreaReport& r) {
+  using detail::format;
+  const std::string unit = r.units + "²";
+  std::string t = format("%s (%s)\n", r.name.c_str(), r.mechanism.c_str());
+  const double area = r.area, lo = r.area_lower, hi = r.area_upper;
+  if (r.limited) {
+    t += format("area       %.10g %s  (certified: %.12g <= area <= %.12g, width %.2g of the area)\n", area,
+                unit.c_str(), lo, hi, (hi - lo) / hi);
+    for (const auto& c : r.criteria) {
+      t += format("           limited by %s <= %g\n", c.criterion.c_str(), c.threshold);
+    }
+    if (!r.stopped.empty()) t += format("STOPPED    %s\n", r.stopped.c_str());
+    if (!r.note.empty()) t += format("note       %s\n", r.note.c_str());
+  } else if (r.enclosure.exact) {
+    t += format("area       %.15g %s  (exact, %zu component%s)\n", area, unit.c_str(), r.components.size(),
+                r.components.size() == 1 ? "" : "s");
+  } else {
+    t += format("area       %.10g %s  (certified: %.10g <= area <= %.10g, width %.2g of the area)\n", area,
+                unit.c_str(), lo, hi, (hi - lo) / area);
+    t += format("           components of the outer enclosure: %zu\n", r.components.size());
+  }
+  int k = 0;
+  for (const auto& c : r.components) {
+    const auto& rect = c.inscribed_rectangle;
+    t += format("  [%d] area %.15g, perimeter %.10g, centroid (%.6g, %.6g), "
+                "inscribed circle r = %.6g, inscribed rectangle %.6g x %.6g = %.10g %s\n",
+                k++, c.area, c.perimeter, c.centroid.x, c.centroid.y, c.inscribed_circle.radius, rect.box.width(),
+                rect.box.height(), rect.area, unit.c_str());
+  }
+  if (r.real) t += real_workspace_text(*r.real, unit);
+  t += format("time       %.3f ms  (%s)\n", r.time_ms, kComputeTimeMeaning);
+  return t;
+}
+
+}  // namespace pkmws::report
