@@ -23,15 +23,21 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
                   "Relative width of the inscribed rectangle's certified area bounds (default 1e-6; "
                   "1e-9 takes about a second per component)")
       ->check(CLI::Range(1e-12, 0.5));
+  auto rectangle_angle = std::make_shared<std::string>("axis");
+  sub->add_option("--rectangle-angle", *rectangle_angle,
+                  "Inscribed rectangles axis-aligned (axis, default) or at any orientation (any: the angle "
+                  "and corners are reported; docs/design_space.md)")
+      ->check(CLI::IsMember({"axis", "any"}));
   auto max_time = std::make_shared<double>(0.0);
   add_max_time_option(sub, *max_time);
-  commands.push_back({sub, [file, json, depth, max_time, rectangle_precision] {
+  commands.push_back({sub, [file, json, depth, max_time, rectangle_precision, rectangle_angle] {
     const io::MechanismFile mech = io::load_mechanism(*file);
     // Criteria limits are certified level sets: bounded by --max-time, with progress.
     const CertifiedWork work("area", *max_time);
     report::AreaOptions options;
     options.interference_depth = *depth;
     options.rectangle_precision = *rectangle_precision;
+    options.rectangle_any_angle = *rectangle_angle == "any";
     options.budget = work.budget();
     const report::AreaReport result = report::area(mech, options);
     if (*json) {

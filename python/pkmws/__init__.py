@@ -134,11 +134,14 @@ def _inscribed_circle(self: Region, precision: Optional[float] = None) -> Option
 
 
 def _inscribed_rectangle(self: Region, precision: float = 1e-6, aspect: Optional[float] = None,
-                         width: Optional[float] = None) -> Optional[Dict[str, Any]]:
-    """The largest axis-aligned inscribed rectangle over the components: ``min``,
-    ``max``, ``width``, ``height``, ``area`` (certified lower bound, the box is
-    inside), ``area_upper`` (no larger rectangle fits), ``verified``."""
-    return _largest(self.inscribed_rectangles(precision, aspect, width), "area")
+                         width: Optional[float] = None, any_angle: bool = False) -> Optional[Dict[str, Any]]:
+    """The largest inscribed rectangle over the components: ``min``, ``max``,
+    ``width``, ``height``, ``area`` (certified lower bound, the rectangle is
+    inside), ``area_upper`` (no larger rectangle fits), ``verified``. Axis-aligned,
+    or with ``any_angle=True`` at any orientation: then also ``angle`` (radians,
+    of the ``width`` side) and ``corners``, and ``min``/``max`` are in the frame
+    turned by the angle."""
+    return _largest(self.inscribed_rectangles(precision, aspect, width, any_angle), "area")
 
 
 def _geo(self: Region) -> Dict[str, Any]:

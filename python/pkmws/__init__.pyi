@@ -47,7 +47,7 @@ class CircleDict(TypedDict):
     radius_upper: float
     component: int
 
-class RectangleDict(TypedDict):
+class _RectangleBase(TypedDict):
     min: Point
     max: Point
     width: float
@@ -56,6 +56,10 @@ class RectangleDict(TypedDict):
     area_upper: float
     verified: bool
     component: int
+
+class RectangleDict(_RectangleBase, total=False):
+    angle: float  # any_angle=True: radians, of the width side
+    corners: List[Point]
 
 class Curve:
     @property
@@ -117,9 +121,9 @@ class Region:
     def inscribed_circles(self, precision: Optional[float] = ...) -> List[CircleDict]: ...
     def inscribed_circle(self, precision: Optional[float] = ...) -> Optional[CircleDict]: ...
     def inscribed_rectangles(self, precision: float = ..., aspect: Optional[float] = ...,
-                             width: Optional[float] = ...) -> List[RectangleDict]: ...
+                             width: Optional[float] = ..., any_angle: bool = ...) -> List[RectangleDict]: ...
     def inscribed_rectangle(self, precision: float = ..., aspect: Optional[float] = ...,
-                            width: Optional[float] = ...) -> Optional[RectangleDict]: ...
+                            width: Optional[float] = ..., any_angle: bool = ...) -> Optional[RectangleDict]: ...
     def __or__(self, other: Region) -> Region: ...
     def __and__(self, other: Region) -> Region: ...
     def __sub__(self, other: Region) -> Region: ...

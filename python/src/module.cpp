@@ -181,6 +181,12 @@ py::dict rectangle_py(const geometry::InscribedRectangle& r, std::size_t compone
   d["area_upper"] = r.area_upper;
   d["verified"] = r.verified;
   d["component"] = component;
+  if (r.orientations > 0) {  // at any orientation: min/max are in the frame turned by the angle
+    d["angle"] = r.angle;
+    py::list corners;
+    for (const auto& p : r.corners()) corners.append(point_py(p));
+    d["corners"] = corners;
+  }
   return d;
 }
 
@@ -851,9 +857,10 @@ PYBIND11_MODULE(_pkmws, mod) {
         return out;
       }, py::arg("precision") = py::none())
       .def("inscribed_rectangles", [](const PyRegion& r, double precision, std::optional<double> aspect,
-                                      std::optional<double> width) {
+                                      std::optional<double> width, bool any_angle) {
         if (!(precision >= 1e-12 && precision <= 0.5)) throw InputError("precision: must be in [1e-12, 0.5]");
         if (aspect && width) throw InputError("inscribed_rectangle: give aspect or width, not both");
+        if (any_angle && width) throw InputError("inscribed_rectangle: a given width needs a fixed orientation (any_angle=False)");
         geometry::RectangleShape shape;
         if (aspect) shape = {geometry::RectangleShape::Kind::aspect, finite(*aspect, "aspect")};
         if (width) shape = {geometry::RectangleShape::Kind::width, finite(*width, "width")};
@@ -864,12 +871,14 @@ PYBIND11_MODULE(_pkmws, mod) {
           geometry::InscribedRectangle rect;
           {
             py::gil_scoped_release release;
-            rect = geometry::largest_inscribed_rectangle(c, precision, shape, &r.region);
+            rect = any_angle ? geometry::largest_inscribed_rectangle_any_angle(c, precision, shape, &r.region)
+                             : geometry::largest_inscribed_rectangle(c, precision, shape, &r.region);
           }
           out.append(rectangle_py(rect, k++));
         }
         return out;
-      }, py::arg("precision") = 1e-6, py::arg("aspect") = py::none(), py::arg("width") = py::none())
+      }, py::arg("precision") = 1e-6, py::arg("aspect") = py::none(), py::arg("width") = py::none(),
+         py::arg("any_angle") = false)
       .def("__or__", [](const PyRegion& a, const PyRegion& b) { return boolean(a, b, std::bit_or<>{}); })
       .def("__and__", [](const PyRegion& a, const PyRegion& b) { return boolean(a, b, std::bit_and<>{}); })
       .def("__sub__", [](const PyRegion& a, const PyRegion& b) { return boolean(a, b, std::minus<>{}); })

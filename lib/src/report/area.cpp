@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <numbers>
 #include <cstdio>
 
 #include "pkmws/io/export.hpp"
@@ -27,7 +28,11 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
 // region), each component's rectangle is searched there, so that it fits the
 // true workspace.
 void region_report(AreaReport& out, const geometry::Region& region, double min_area, double rectangle_precision,
-                   const geometry::Region* inside) {
+                   bool any_angle, const geometry::Region* inside) {
+  const auto rectangle = [&](const geometry::Component& c, const geometry::Region* in) {
+    return any_angle ? geometry::largest_inscribed_rectangle_any_angle(c, rectangle_precision, {}, in)
+                     : geometry::largest_inscribed_rectangle(c, rectangle_precision, {}, in);
+  };
   double area = 0.0;
   // Rectangles must fit the true workspace: for a certified enclosure they are
   // searched in the inner region's components within this component.
@@ -37,11 +42,11 @@ void region_report(AreaReport& out, const geometry::Region& region, double min_a
     const auto circle = geometry::largest_inscribed_circle(c, inscribed_circle_precision(c.bbox));
     geometry::InscribedRectangle rect;
     if (!inside) {
-      rect = geometry::largest_inscribed_rectangle(c, rectangle_precision, {}, &region);
+      rect = rectangle(c, &region);
     } else {
       for (const auto& k : inner) {
         if (k.outer.curves.empty() || !geometry::inside(c, k.outer.curves.front().source)) continue;
-        const auto r = geometry::largest_inscribed_rectangle(k, rectangle_precision, {}, inside);
+        const auto r = rectangle(k, inside);
         if (r.area > rect.area) rect = r;
         rect.area_upper = std::max(rect.area_upper, r.area_upper);
       }
@@ -73,12 +78,19 @@ void criteria_area_report(AreaReport& out, const io::MechanismFile& mech, const 
 }
 
 Json rectangle_json(const geometry::InscribedRectangle& r) {
-  return Json{{"box", detail::box_json(r.box)},
-              {"width", r.box.width()},
-              {"height", r.box.height()},
-              {"area", r.area},
-              {"area_upper", r.area_upper},
-              {"verified", r.verified}};
+  Json out{{"box", detail::box_json(r.box)},
+           {"width", r.box.width()},
+           {"height", r.box.height()},
+           {"area", r.area},
+           {"area_upper", r.area_upper},
+           {"verified", r.verified}};
+  if (r.angle != 0.0 || r.orientations > 0) {  // asked at any orientation: `box` is in the turned frame
+    out["angle_deg"] = r.angle * 180.0 / std::numbers::pi;
+    Json corners = Json::array();
+    for (const geometry::Point& p : r.corners()) corners.push_back({p.x, p.y});
+    out["corners"] = corners;
+  }
+  return out;
 }
 
 // `real_area`, `real_area_lower`, `real_area_upper`, `real_method`, `interference` [...].
@@ -158,7 +170,7 @@ AreaReport area(const io::MechanismFile& mech, const AreaOptions& options) {
     throw io::InputError(mech.path + ": the workspace is empty (impossible geometry: the legs cannot meet)");
   }
   region_report(out, region, io::effective_min_area(region, {}), options.rectangle_precision,
-                out.enclosure.exact ? nullptr : &out.enclosure.inner);
+                options.rectangle_any_angle, out.enclosure.exact ? nullptr : &out.enclosure.inner);
   out.method = out.enclosure.method();
   if (out.enclosure.exact) {
     // Exact boundary: the bounds are the double rounding of Green's theorem.
@@ -249,6 +261,11 @@ std::string to_text(const AreaReport& r) {
                 "inscribed circle r = %.6g, inscribed rectangle %.6g x %.6g = %.10g %s\n",
                 k++, c.area, c.perimeter, c.centroid.x, c.centroid.y, c.inscribed_circle.radius, rect.box.width(),
                 rect.box.height(), rect.area, unit.c_str());
+    if (rect.orientations > 0) {
+      t.pop_back();  // the newline
+      t += format(", turned by %.6g deg (bounds [%.10g, %.10g])\n", rect.angle * 180.0 / std::numbers::pi, rect.area,
+                  rect.area_upper);
+    }
   }
   if (r.real) t += real_workspace_text(*r.real, unit);
   t += format("time       %.3f ms  (%s)\n", r.time_ms, kComputeTimeMeaning);

@@ -25,6 +25,9 @@ struct AreaOptions {
   int interference_depth = 7;
   /// Relative width of each inscribed rectangle's certified area bounds.
   double rectangle_precision = 1e-6;
+  /// The inscribed rectangles at any orientation (geometry::
+  /// largest_inscribed_rectangle_any_angle) instead of axis-aligned.
+  bool rectangle_any_angle = false;
   /// Files with criteria: the certified level sets' bound width relative to the area.
   double criteria_tolerance = 1e-6;
   /// Files with criteria: their deadline and progress (the report then may be `stopped`).
@@ -39,8 +42,9 @@ struct ComponentReport {
   geometry::Box bbox;
   geometry::Point centroid;
   geometry::InscribedCircle inscribed_circle;
-  /// The largest axis-aligned rectangle inside the component (for a certified
-  /// workspace: inside the inner enclosure, so that it fits the true workspace).
+  /// The largest axis-aligned rectangle inside the component, or at any
+  /// orientation when asked (for a certified workspace: inside the inner
+  /// enclosure, so that it fits the true workspace).
   geometry::InscribedRectangle inscribed_rectangle;
 };
 
