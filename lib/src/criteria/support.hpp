@@ -8,12 +8,15 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "pkmws/certified/interval.hpp"
 #include "pkmws/certified/template_field.hpp"
+#include "pkmws/criteria/fields.hpp"
+#include "pkmws/mechanisms/mechanism.hpp"
 #include "pkmws/geometry/types.hpp"
 
 namespace pkmws::criteria::detail {
@@ -82,5 +85,119 @@ using detail::nan;
 using detail::pi;
 using geometry::Box;
 using geometry::Point;
+
+// ---------------------------------------------------------------------------
+// The criteria of a two-leg point platform (MOMA, five-bar): the pressure angle
+// α = acos|sin ε| and the reaction f / |sin ε| from cos ε of the legs' last
+// links (two-force members, [Briot]), the velocity ratio σ_max and the
+// condition number of dq/dP from its rows. A Model gives
+//   template <class T> T cos_eps(const T& x, const T& y) const;
+//   template <class T> Rows2<T> rows(const T& x, const T& y) const;
+//   CellState domain(const Box&) const;  // both legs off their type-1 singularity: C² there
+//   CellState within(const Box&) const;  // box ⊆ the workspace
+// The criteria's values come from the mechanism's own evaluation in the file's
+// working mode (the first answer of evaluate()).
+template <class Model> struct PointPlatformField {
+  enum class What { cos2eps, ratio2, kappa };
+  Model model;
+  What what = What::cos2eps;
+  template <class T> T eval(const T& x, const T& y) const {
+    if (what == What::ratio2) return detail::sigma_max2(model.rows(x, y));
+    if (what == What::kappa) return detail::kappa_surrogate(model.rows(x, y));
+    return certified::sqr(model.cos_eps(x, y));
+  }
+  // σ_max² also needs distinct singular values.
+  certified::CellState domain(const geometry::Box& b) const {
+    const certified::CellState d = model.domain(b);
+    if (d == certified::CellState::inside && what == What::ratio2 &&
+        !detail::distinct_singular_values(
+            model.rows(certified::Interval(b.min.x, b.max.x), certified::Interval(b.min.y, b.max.y)))) {
+      return certified::CellState::undecided;  // near an isotropic point
+    }
+    return d;
+  }
+};
+
+// The field of criterion `name` ("pressure_angle", "reaction" with the load's
+// force, "velocity_ratio", "condition_number") of a point platform; `kind`
+// prefixes its key.
+template <class Model>
+CriterionField point_platform_field(const Model& model, const mechanisms::Mechanism& mechanism, const std::string& kind,
+                                    const std::string& name, double force_N = 0.0) {
+  using What = typename PointPlatformField<Model>::What;
+  const What what = name == "velocity_ratio"     ? What::ratio2
+                    : name == "condition_number" ? What::kappa
+                                                 : What::cos2eps;
+  CriterionField c;
+  c.name = name;
+  c.surrogate = std::make_shared<certified::TemplateField<PointPlatformField<Model>>>(PointPlatformField<Model>{model, what});
+  c.within_test = [model](const geometry::Box& b) { return model.within(b); };
+  mechanisms::Criteria with_load;
+  if (name == "reaction") with_load.load = mechanisms::Load{force_N, 0.0};
+  const mechanisms::Mechanism* m = &mechanism;
+  // The criterion in the file's working mode (NaN outside the workspace).
+  const auto at = [m, with_load](geometry::Point p, auto pick) {
+    const auto e = m->evaluate({p.x, p.y, 0.0}, with_load);
+    return !e.empty() && e.front().reachable ? pick(e.front()) : detail::nan;
+  };
+  if (what == What::ratio2) {
+    c.unit = "|dq|/|dP|";
+    c.key = kind + ".vratio";
+    c.level = [](double ratio) { return ratio * ratio; };  // σ_max <= t  <=>  σ_max² <= t²
+    c.value = [at](geometry::Point p) {
+      return at(p, [](const mechanisms::Evaluation& e) { return e.velocity_ratio ? *e.velocity_ratio : detail::nan; });
+    };
+  } else if (what == What::kappa) {
+    c.unit = "";  // dimensionless
+    c.key = kind + ".kappa";
+    c.threshold_min = 1.0;
+    c.level = detail::kappa_level;
+    c.value = [at](geometry::Point p) {
+      return at(p, [](const mechanisms::Evaluation& e) { return e.condition_number; });
+    };
+  } else if (name == "reaction") {
+    c.unit = "N";
+    c.key = kind + ".cos2eps";
+    // R = f / |sin ε| <= R_max  <=>  cos²ε <= 1 - (f / R_max)² (docs/theory/five_bar.md).
+    c.level = [force_N](double r_max) {
+      if (!(r_max > 0.0)) return -1.0;
+      const double q = force_N / r_max;
+      return q >= 1.0 ? (q == 1.0 ? 0.0 : -1.0) : 1.0 - q * q;
+    };
+    c.value = [at](geometry::Point p) {
+      return at(p, [](const mechanisms::Evaluation& e) { return e.reactions_N.empty() ? detail::nan : e.reactions_N[0]; });
+    };
+  } else {
+    c.unit = "deg";
+    c.key = kind + ".cos2eps";
+    c.threshold_max = 90.0;
+    // α <= α_max  <=>  |cos ε| <= sin α_max  <=>  cos²ε <= sin²α_max ([Briot]).
+    c.level = [](double alpha_deg) {
+      const double s = std::sin(std::clamp(alpha_deg, 0.0, 90.0) * detail::deg);
+      return s * s;
+    };
+    c.value = [at](geometry::Point p) {
+      return at(p, [](const mechanisms::Evaluation& e) { return e.pressure_angle_deg.at(0); });
+    };
+  }
+  return c;
+}
+
+// The capability CriterionFields of a point platform (valid while the mechanism lives).
+template <class Model> class PointPlatformFields final : public CriterionFields {
+ public:
+  PointPlatformFields(Model model, const mechanisms::Mechanism* m, std::string kind)
+      : model_(std::move(model)), m_(m), kind_(std::move(kind)) {}
+  std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& criteria,
+                                     const std::vector<int>& /*reaction_legs*/) const override {
+    if (name == "reaction" && !criteria.load) throw std::invalid_argument("the reaction criterion needs criteria.load");
+    return {point_platform_field(model_, *m_, kind_, name, criteria.load ? criteria.load->force_N : 0.0)};
+  }
+
+ private:
+  Model model_;
+  const mechanisms::Mechanism* m_;
+  std::string kind_;
+};
 
 }  // namespace pkmws::criteria

@@ -16,12 +16,10 @@ namespace {
 // eq. 3 gives dp_i = (P - S_i).dP / ((P - S_i).a_i) (docs/theory/moma.md,
 // Jacobians): row i of dq/dP is m_i = a_i - b_i c_i n_i with c_i = (n_i.w_i) / r_i.
 struct MomaTransmission {
-  enum class What { cos2eps, ratio2, kappa };  // cos²ε, σ_max² of dq/dP, -(det / F)² of dq/dP
   std::array<Point, 2> ref, a, n;
   std::array<double, 2> l, b, stroke_lo, stroke_hi;
-  What what = What::cos2eps;
 
-  MomaTransmission(const mechanisms::Moma& m, What w) : what(w) {
+  explicit MomaTransmission(const mechanisms::Moma& m) {
     for (int i = 0; i < 2; ++i) {
       const auto& leg = m.legs()[static_cast<std::size_t>(i)];
       const std::size_t k = static_cast<std::size_t>(i);
@@ -74,13 +72,7 @@ struct MomaTransmission {
     }
     return {mx[0], my[0], mx[1], my[1]};
   }
-  template <class T> T eval(const T& x, const T& y) const {
-    if (what == What::ratio2) return sigma_max2(rows(x, y));
-    if (what == What::kappa) return kappa_surrogate(rows(x, y));
-    return certified::sqr(cos_eps(x, y));
-  }
-  // Smooth where both rods are strictly off the guides' normals (r_i > 0);
-  // σ_max² also needs distinct singular values.
+  // Smooth where both rods are strictly off the guides' normals (r_i > 0).
   CellState domain(const Box& box) const {
     const Interval x(box.min.x, box.max.x), y(box.min.y, box.max.y);
     bool inside = true;
@@ -88,9 +80,6 @@ struct MomaTransmission {
       const Leg<Interval> g = leg(i, x, y);
       if (g.r2.hi < 0.0) return CellState::outside;
       inside = inside && g.r2.lo > 0.0;
-    }
-    if (inside && what == What::ratio2 && !detail::distinct_singular_values(rows(x, y))) {
-      return CellState::undecided;  // near an isotropic point
     }
     return inside ? CellState::inside : CellState::undecided;
   }
@@ -109,119 +98,23 @@ struct MomaTransmission {
   }
 };
 
-// The file's working mode at p: the evaluation the fields describe (NaN
-// outside the workspace).
-const mechanisms::Evaluation* own_mode(const std::vector<mechanisms::Evaluation>& e) {
-  return !e.empty() && e.front().reachable ? &e.front() : nullptr;
-}
-
 }  // namespace
 
-CriterionField moma_pressure_angle(const mechanisms::Moma& mechanism) {
-  const MomaTransmission impl(mechanism, MomaTransmission::What::cos2eps);
-  CriterionField c;
-  c.name = "pressure_angle";
-  c.unit = "deg";
-  c.threshold_max = 90.0;
-  c.key = "moma.cos2eps";
-  c.surrogate = std::make_shared<certified::TemplateField<MomaTransmission>>(impl);
-  // α = acos|sin ε| <= α_max  <=>  cos²ε <= sin²α_max ([Briot], as for the five-bar).
-  c.level = [](double alpha_deg) {
-    const double s = std::sin(std::clamp(alpha_deg, 0.0, 90.0) * deg);
-    return s * s;
-  };
-  const mechanisms::Moma* m = &mechanism;
-  c.value = [m](Point p) {
-    const auto e = m->evaluate({p.x, p.y, 0.0}, {});
-    const auto* own = own_mode(e);
-    return own ? own->pressure_angle_deg.at(0) : nan;
-  };
-  c.within_test = [impl](const Box& b) { return impl.within(b); };
-  return c;
+CriterionField moma_pressure_angle(const mechanisms::Moma& m) {
+  return point_platform_field(MomaTransmission(m), m, "moma", "pressure_angle");
 }
-
-CriterionField moma_reaction(const mechanisms::Moma& mechanism, double force_N) {
-  CriterionField c = moma_pressure_angle(mechanism);
-  c.name = "reaction";
-  c.unit = "N";
-  c.threshold_max = std::numeric_limits<double>::infinity();
-  // R = f / |sin ε| <= R_max  <=>  cos²ε <= 1 - (f / R_max)² (two-force rods, as the five-bar's distal links).
-  c.level = [force_N](double r_max) {
-    if (!(r_max > 0.0)) return -1.0;
-    const double q = force_N / r_max;
-    return q >= 1.0 ? (q == 1.0 ? 0.0 : -1.0) : 1.0 - q * q;
-  };
-  const mechanisms::Moma* m = &mechanism;
-  c.value = [m, force_N](Point p) {
-    mechanisms::Criteria with_load;
-    with_load.load = mechanisms::Load{force_N, 0.0};
-    const auto e = m->evaluate({p.x, p.y, 0.0}, with_load);
-    const auto* own = own_mode(e);
-    return own && !own->reactions_N.empty() ? own->reactions_N.at(0) : nan;
-  };
-  return c;
+CriterionField moma_reaction(const mechanisms::Moma& m, double force_N) {
+  return point_platform_field(MomaTransmission(m), m, "moma", "reaction", force_N);
 }
-
-CriterionField moma_velocity_ratio(const mechanisms::Moma& mechanism) {
-  const MomaTransmission impl(mechanism, MomaTransmission::What::ratio2);
-  CriterionField c;
-  c.name = "velocity_ratio";
-  c.unit = "|dq|/|dP|";
-  c.key = "moma.vratio";
-  c.surrogate = std::make_shared<certified::TemplateField<MomaTransmission>>(impl);
-  c.level = [](double ratio) { return ratio * ratio; };  // σ_max <= t  <=>  σ_max² <= t²
-  const mechanisms::Moma* m = &mechanism;
-  c.value = [m](Point p) {
-    const auto e = m->evaluate({p.x, p.y, 0.0}, {});
-    const auto* own = own_mode(e);
-    return own && own->velocity_ratio ? *own->velocity_ratio : nan;
-  };
-  c.within_test = [impl](const Box& b) { return impl.within(b); };
-  return c;
+CriterionField moma_velocity_ratio(const mechanisms::Moma& m) {
+  return point_platform_field(MomaTransmission(m), m, "moma", "velocity_ratio");
 }
-
-CriterionField moma_condition_number(const mechanisms::Moma& mechanism) {
-  const MomaTransmission impl(mechanism, MomaTransmission::What::kappa);
-  CriterionField c;
-  c.name = "condition_number";
-  c.unit = "";  // dimensionless
-  c.key = "moma.kappa";
-  c.threshold_min = 1.0;
-  c.surrogate = std::make_shared<certified::TemplateField<MomaTransmission>>(impl);
-  c.level = kappa_level;
-  const mechanisms::Moma* m = &mechanism;
-  c.value = [m](Point p) {
-    const auto e = m->evaluate({p.x, p.y, 0.0}, {});
-    const auto* own = own_mode(e);
-    return own ? own->condition_number : nan;
-  };
-  c.within_test = [impl](const Box& b) { return impl.within(b); };
-  return c;
+CriterionField moma_condition_number(const mechanisms::Moma& m) {
+  return point_platform_field(MomaTransmission(m), m, "moma", "condition_number");
 }
-
-namespace {
-
-// Capability criteria::CriterionFields of the MOMA.
-class MomaFields final : public CriterionFields {
- public:
-  explicit MomaFields(const mechanisms::Moma* m) : m_(m) {}
-  std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& criteria,
-                                     const std::vector<int>& /*reaction_legs*/) const override {
-    if (name == "pressure_angle") return {moma_pressure_angle(*m_)};
-    if (name == "velocity_ratio") return {moma_velocity_ratio(*m_)};
-    if (name == "condition_number") return {moma_condition_number(*m_)};
-    if (!criteria.load) throw std::invalid_argument("the reaction criterion needs criteria.load");
-    return {moma_reaction(*m_, criteria.load->force_N)};
-  }
-
- private:
-  const mechanisms::Moma* m_;
-};
-
-}  // namespace
 
 std::shared_ptr<const CriterionFields> moma_fields(const mechanisms::Moma& mechanism) {
-  return std::make_shared<MomaFields>(&mechanism);
+  return std::make_shared<PointPlatformFields<MomaTransmission>>(MomaTransmission(mechanism), &mechanism, "moma");
 }
 
 }  // namespace pkmws::criteria

@@ -8,6 +8,14 @@ namespace pkmws::criteria {
 
 namespace {
 
+// 3-RPR at a fixed orientation φ: B_j = P + c_j, c_j = R(φ) b'_j; leg vector
+// d_j = B_j - A_j = P - e_j, e_j = A_j - c_j. Unnormalised force direction n_j:
+// J d_j (revolute actuation: perpendicular to the leg) or d_j (prismatic).
+// Rows a_j = [n_j, c_j x n_j] (moments about P, [Briot]'s f_i), linear in P.
+// Column i of A^{-1} is (a_j x a_k) / det(a_0, a_1, a_2) ((i, j, k) cyclic), and
+// normalising row i by |n_i| = |d_i| = ρ_i multiplies it by ρ_i, so the twist
+// with only actuator i free is t_i = ρ_i (a_j x a_k) / det: v_P,i = its first two
+// components, ω_i the third (planar_transmission.hpp).
 struct ThreeRprTwist {
   std::array<Point, 3> c, e;
   bool revolute = true;
