@@ -40,6 +40,8 @@ import time
 
 import numpy as np
 
+from report_section import update_report
+
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 HEADING = "## Design-space sweeps"
 BASE = ROOT / "datasets" / "moma_m1_g0_l250.json"
@@ -492,16 +494,6 @@ def markdown(res, args):
     return "\n".join(lines)
 
 
-def update_report(path, section):
-    text = path.read_text(encoding="utf-8") if path.exists() else ""
-    pattern = re.compile(rf"^{re.escape(HEADING)}\n.*?(?=^## |\Z)", re.S | re.M)
-    if pattern.search(text):
-        text = pattern.sub(lambda _: section + "\n", text, count=1)
-    else:
-        text = text.rstrip("\n") + "\n\n" + section + "\n"
-    path.write_text(text.rstrip("\n") + "\n", encoding="utf-8")
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--report", type=pathlib.Path, help="Markdown file whose design-space section to replace")
@@ -518,7 +510,7 @@ def main():
     section = markdown(res, args)
     print(section)
     if args.report:
-        update_report(args.report, section)
+        update_report(args.report, HEADING, section)
         print(f"wrote the section to {os.fspath(args.report)}")
 
 

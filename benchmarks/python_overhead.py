@@ -13,13 +13,14 @@ import argparse
 import os
 import pathlib
 import platform
-import re
 import time
 
 import numpy as np
 
 import pkmws
 from pkmws import _pkmws
+
+from report_section import update_report
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 HEADING = "## Python module overhead"
@@ -111,16 +112,6 @@ def markdown(rows, n):
     return "\n".join(lines), met
 
 
-def update_report(path, section):
-    text = path.read_text(encoding="utf-8") if path.exists() else ""
-    pattern = re.compile(rf"^{re.escape(HEADING)}\n.*?(?=^## |\Z)", re.S | re.M)
-    if pattern.search(text):
-        text = pattern.sub(lambda _: section + "\n", text, count=1)
-    else:
-        text = text.rstrip("\n") + "\n\n" + section + "\n"
-    path.write_text(text.rstrip("\n") + "\n", encoding="utf-8")
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--report", type=pathlib.Path, help="Markdown file whose Python section to replace")
@@ -133,7 +124,7 @@ def main():
     section, met = markdown(rows, n)
     print(f"vectorised within {TARGET}x of C++ per point: {'met' if met else 'not met'}")
     if args.report:
-        update_report(args.report, section)
+        update_report(args.report, HEADING, section)
         print(f"wrote the section to {os.fspath(args.report)}")
 
 

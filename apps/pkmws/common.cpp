@@ -11,6 +11,8 @@
 #include <optional>
 
 #include "cli.hpp"
+
+#include "pkmws/report/common.hpp"
 #include "pkmws/io/export.hpp"
 
 namespace pkmws::cli {
@@ -19,38 +21,7 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-namespace {
-
-// The contract of every JSON report: no bare null. A null (or an array holding
-// one) at `key` comes with `key`_reason, or lies in an object that has a
-// `reason` (an unreachable mode). A null that slipped through without one gets
-// a generic reason rather than none.
-void give_nulls_reasons(Json& j, bool reason_in_scope) {
-  if (j.is_array()) {
-    for (auto& e : j) give_nulls_reasons(e, reason_in_scope);
-    return;
-  }
-  if (!j.is_object()) return;
-  const bool scope = reason_in_scope || (j.contains("reason") && j["reason"].is_string());
-  std::vector<std::string> missing;
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    bool holds_null = it.value().is_null();
-    if (it.value().is_array()) {
-      for (const auto& e : it.value()) holds_null = holds_null || e.is_null();
-    }
-    if (holds_null && !scope && !j.contains(it.key() + "_reason")) missing.push_back(it.key());
-    give_nulls_reasons(it.value(), scope);
-  }
-  for (const auto& k : missing) j[k + "_reason"] = "undefined here (not a finite number)";
-}
-
-}  // namespace
-
-void print_json(const Json& j) {
-  Json out = j;
-  give_nulls_reasons(out, false);
-  std::cout << out.dump(2) << "\n";
-}
+void print_json(const Json& j) { std::cout << report::json_with_null_reasons(j.dump()) << "\n"; }
 
 namespace {
 

@@ -1,5 +1,7 @@
 #include "report/json.hpp"
 
+#include "pkmws/report/common.hpp"
+
 #include <vector>
 
 namespace pkmws::report::detail {
@@ -46,3 +48,11 @@ Json joint_vocabulary(const std::vector<mechanisms::JointInfo>& joints, const st
 }
 
 }  // namespace pkmws::report::detail
+
+namespace pkmws::report {
+
+std::string json_with_null_reasons(const std::string& json_text) {
+  return detail::json_text(detail::Json::parse(json_text));
+}
+
+}  // namespace pkmws::report

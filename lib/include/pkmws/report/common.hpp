@@ -41,6 +41,13 @@ AreaBounds exact_area_bounds(double area);
 /// A pose inside `region` for drawing the mechanism: the largest component's
 /// centroid or the centre of its largest inscribed circle, or points around it,
 /// the first reachable and non-singular; the file's orientation (3-DOF).
+/// The contract of every JSON report applied to a JSON document (its text):
+/// no bare null — a null (or an array holding one) at `key` comes with
+/// `key`_reason, or lies in an object that has a `reason`; a null without one
+/// gets a generic reason. Returns the text indented by 2 (the commands whose
+/// reports are still assembled by the command line print through this).
+std::string json_with_null_reasons(const std::string& json_text);
+
 mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Region& region);
 
 }  // namespace pkmws::report
