@@ -6,6 +6,9 @@
 
 #include <cmath>
 
+#include <initializer_list>
+
+#include "pkmws/criteria/fields.hpp"
 #include "pkmws/geometry/types.hpp"
 
 namespace pkmws::test {
@@ -44,6 +47,17 @@ void check_field(const Field& f, geometry::Point p, double h, const geometry::Bo
       EXPECT_TRUE(jb.dx.contains(jq.dx) && jb.dy.contains(jq.dy));
       EXPECT_TRUE(gb.dx.contains(jq.dx) && gb.dy.contains(jq.dy));
       EXPECT_TRUE(jb.dxx.contains(jq.dxx) && jb.dxy.contains(jq.dxy) && jb.dyy.contains(jq.dyy));
+    }
+  }
+}
+
+// The field's sub-level sets are the criterion's at p: value <= t <=>
+// surrogate <= level(t), for each threshold not within 1e-9 of the value.
+inline void expect_same_sublevel(const criteria::CriterionField& f, geometry::Point p, double value,
+                                 std::initializer_list<double> thresholds) {
+  for (double t : thresholds) {
+    if (std::abs(value - t) > 1e-9 * t) {
+      EXPECT_EQ(value <= t, f.surrogate->value(p) <= f.level(t)) << "threshold " << t;
     }
   }
 }

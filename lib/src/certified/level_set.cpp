@@ -661,6 +661,17 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
     double in_lower = 0.0, undecided_in = 0.0;
     std::vector<char> kind;  // per inside box
   };
+  // What every traced cell gives, inside W or across its boundary: counts,
+  // the regions' boxes and the curve.
+  const auto take_trace = [&](const Box& cell, CellTrace& t) {
+    ++result.traced_cells;
+    result.curve_points += t.points;
+    if (options.build_regions) {
+      step_boxes(t, cell, true, inner_steps);
+      step_boxes(t, cell, false, outer_steps);
+    }
+    if (t.curve.size() >= 2) result.curves.push_back(std::move(t.curve));
+  };
   std::vector<LeafSums> sums(per_leaf.size());
   detail::for_each_block(policy, per_leaf.size(), per_leaf.size() * 64, [&](std::size_t k) {
     LeafSums& m = sums[k];
@@ -696,27 +707,15 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
       undecided_in += box_area(b);
     }
     for (auto& [cell, t] : r.traced) {
-      ++result.traced_cells;
-      result.curve_points += t.points;
       traced_lower += t.lower;
       traced_upper += t.upper;
       envelope_polygons(t, cell, t.sgn < 0, result.inner_polygons);  // below env_lo, or above env_hi
-      if (options.build_regions) {
-        step_boxes(t, cell, true, inner_steps);
-        step_boxes(t, cell, false, outer_steps);
-      }
-      if (t.curve.size() >= 2) result.curves.push_back(std::move(t.curve));
+      take_trace(cell, t);
     }
-    for (auto& [cell, t] : r.traced_across) {
-      ++result.traced_cells;
-      result.curve_points += t.points;
+    for (auto& [cell, t] : r.traced_across) {  // bounded below by clipping to W exactly
       envelope_polygons(t, cell, t.sgn < 0, across_inner);
       envelope_polygons(t, cell, t.sgn > 0, across_outer);
-      if (options.build_regions) {
-        step_boxes(t, cell, true, inner_steps);
-        step_boxes(t, cell, false, outer_steps);
-      }
-      if (t.curve.size() >= 2) result.curves.push_back(std::move(t.curve));
+      take_trace(cell, t);
     }
   }
   // Cells across W's boundary: exact region operations. A traced cell's part

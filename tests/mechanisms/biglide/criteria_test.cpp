@@ -10,6 +10,7 @@
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "mechanisms/biglide/criteria.hpp"
+#include "support/field_checks.hpp"
 #include "support/fixtures.hpp"
 
 namespace {
@@ -106,11 +107,7 @@ TEST(BiglideConditionNumber, SurrogateAgreesWithTheEvaluationAndBoundsAGrid) {
     const double kappa = own->condition_number;
     if (!(kappa < 1e3)) continue;
     EXPECT_NEAR(c.value(p), kappa, 1e-9 * kappa);
-    for (double t : {1.5, 3.0, 10.0}) {
-      if (std::abs(kappa - t) > 1e-9 * t) {
-        EXPECT_EQ(kappa <= t, c.surrogate->value(p) <= c.level(t));
-      }
-    }
+    test::expect_same_sublevel(c, p, kappa, {1.5, 3.0, 10.0});
     ++checked;
   }
   EXPECT_EQ(checked, 300);
@@ -120,16 +117,8 @@ TEST(BiglideConditionNumber, SurrogateAgreesWithTheEvaluationAndBoundsAGrid) {
   o.relative_tolerance = 1e-6;
   const auto r = criteria::limited_workspace(f, {{"condition_number", 3.0}}, o);
   EXPECT_LE(r.region.width(), 1e-6 * r.region.area_upper);
-  const int n = 600;
-  const double dx = box.width() / n, dy = box.height() / n;
-  long count = 0;
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      const Point p{box.min.x + (i + 0.5) * dx, box.min.y + (j + 0.5) * dy};
-      count += m.reachable({p.x, p.y, 0.0}) && c.value(p) <= 3.0 ? 1 : 0;
-    }
-  }
-  const double grid = static_cast<double>(count) * dx * dy;
+  const double grid =
+      test::grid_area(box, 600, [&](Point p) { return m.reachable({p.x, p.y, 0.0}) && c.value(p) <= 3.0; });
   EXPECT_NEAR(grid, 0.5 * (r.region.area_lower + r.region.area_upper), 3e-3 * grid);
 }
 

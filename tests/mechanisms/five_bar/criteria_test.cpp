@@ -30,18 +30,12 @@ mechanisms::FiveBar limited_dextar() {
   return mechanisms::FiveBar(legs);
 }
 
-// Cell-centre count of {reachable, alpha <= t} (the file's working mode) on an n x n grid.
+// Area of {reachable, alpha <= t} (the file's working mode) by cell centres on an n x n grid.
 double grid_area(const mechanisms::Mechanism& m, double alpha, int n) {
-  const Box bb = m.bounds();
-  const double dx = bb.width() / n, dy = bb.height() / n;
-  long count = 0;
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      const auto e = m.evaluate({bb.min.x + (i + 0.5) * dx, bb.min.y + (j + 0.5) * dy, 0.0}, {});
-      count += e.front().reachable && e.front().pressure_angle_deg.at(0) <= alpha ? 1 : 0;
-    }
-  }
-  return static_cast<double>(count) * dx * dy;
+  return test::grid_area(m.bounds(), n, [&](Point p) {
+    const auto e = m.evaluate({p.x, p.y, 0.0}, {});
+    return e.front().reachable && e.front().pressure_angle_deg.at(0) <= alpha;
+  });
 }
 
 TEST(FiveBarCriteria, BoxTestRespectsCrankLimits) {
@@ -109,11 +103,7 @@ TEST(FiveBarCriteria, VelocityRatioAndConditionNumberAgreeWithTheEvaluation) {
     const double ratio = *e.front().velocity_ratio, kappa = e.front().condition_number;
     if (!(ratio < 1e3 && kappa < 1e3)) continue;  // near a singularity
     EXPECT_NEAR(vr.surrogate->value(p), ratio * ratio, 1e-9 * ratio * ratio);
-    for (double t : {1.5, 3.0, 10.0}) {
-      if (std::abs(kappa - t) > 1e-9 * t) {
-        EXPECT_EQ(kappa <= t, kc.surrogate->value(p) <= kc.level(t));
-      }
-    }
+    test::expect_same_sublevel(kc, p, kappa, {1.5, 3.0, 10.0});
     const Box box{{p.x - 2e-4, p.y - 1e-4}, {p.x + 1e-4, p.y + 2e-4}};
     if (vr.surrogate->domain(box) == certified::CellState::inside) test::check_field(*vr.surrogate, p, 1e-6, box);
     if (kc.surrogate->domain(box) == certified::CellState::inside) test::check_field(*kc.surrogate, p, 1e-6, box);
@@ -126,16 +116,10 @@ TEST(FiveBarCriteria, VelocityRatioAndConditionNumberAgreeWithTheEvaluation) {
   o.relative_tolerance = 1e-3;
   const auto r = criteria::limited_workspace(f, {{"condition_number", 3.0}}, o);
   EXPECT_LE(r.region.width(), 1e-3 * r.region.area_upper);
-  const int n = 500;
-  const double dx = bb.width() / n, dy = bb.height() / n;
-  long count = 0;
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      const auto e = m.evaluate({bb.min.x + (i + 0.5) * dx, bb.min.y + (j + 0.5) * dy, 0.0}, {});
-      count += e.front().reachable && e.front().condition_number <= 3.0 ? 1 : 0;
-    }
-  }
-  const double grid = static_cast<double>(count) * dx * dy;
+  const double grid = test::grid_area(bb, 500, [&](Point p) {
+    const auto e = m.evaluate({p.x, p.y, 0.0}, {});
+    return e.front().reachable && e.front().condition_number <= 3.0;
+  });
   EXPECT_NEAR(grid, 0.5 * (r.region.area_lower + r.region.area_upper), 5e-3 * grid);
 }
 

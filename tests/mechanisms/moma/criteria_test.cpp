@@ -52,11 +52,7 @@ TEST(MomaCriteria, SurrogatesAgreeWithTheEvaluationAndTheirDerivatives) {
       EXPECT_NEAR(rr.value(p), 100.0 / std::cos(alpha * kDeg), 1e-9 * rr.value(p));
       // κ <= t  <=>  -(det / F)² <= -1 / (t + 1/t)² against the SVD's κ.
       const double kappa = e.front().condition_number;
-      for (double t : {2.3, 2.5, 3.0}) {
-        if (std::abs(kappa - t) > 1e-9 * t) {
-          EXPECT_EQ(kappa <= t, kc.surrogate->value(p) <= kc.level(t));
-        }
-      }
+      test::expect_same_sublevel(kc, p, kappa, {2.3, 2.5, 3.0});
       EXPECT_NEAR(kc.value(p), kappa, 1e-12 * kappa);
       // The sub-level sets agree with the criteria: α <= t  <=>  s <= level(t).
       for (double t : {25.0, 35.0, 45.0}) EXPECT_EQ(alpha <= t, pa.surrogate->value(p) <= pa.level(t));
@@ -76,54 +72,43 @@ TEST(MomaCriteria, SurrogatesAgreeWithTheEvaluationAndTheirDerivatives) {
   }
 }
 
-TEST(MomaCriteria, ParallelGuidesGiveVerticalVelocityBands) {
-  // M1's guides are parallel to y, so dq/dP depends on x only and
-  // {σ_max <= t} = W ∩ {|x| <= x*}: an exact region once x* is found by
-  // bisection on the evaluation (independent of the field).
+// M1's guides are parallel to y, so dq/dP depends on x only and a sub-level
+// set of a criterion growing with |x| is W ∩ {|x| <= x*}: an exact region once
+// x* is found by bisection in [lo, hi] on the evaluation at y = -300
+// (independent of the field). The certified bounds hold its area to 1e-9.
+template <class Value>
+certified::LevelSetResult expect_stripe(const std::string& criterion, double t, double lo, double hi, Value value_at) {
   const auto f = moma("moma_m1_g0_l250");
   const auto& m = as_moma(f);
-  const double t = 1.5;
-  const auto ratio_at = [&](double x) {
-    const auto e = m.evaluate({x, -300.0, 0.0}, {});
-    return *e.front().velocity_ratio;
-  };
-  double lo = 0.0, hi = 100.0;  // ratio(0) = sqrt 2 < t < ratio(100)
-  ASSERT_LT(ratio_at(lo), t);
-  ASSERT_GT(ratio_at(hi), t);
-  for (int k = 0; k < 200 && hi - lo > 1e-13; ++k) (ratio_at(0.5 * (lo + hi)) <= t ? lo : hi) = 0.5 * (lo + hi);
+  const auto at = [&](double x) { return value_at(m.evaluate({x, -300.0, 0.0}, {}).front()); };
+  EXPECT_LT(at(lo), t);
+  EXPECT_GT(at(hi), t);
+  const double from = lo;
+  for (int k = 0; k < 200 && hi - lo > 1e-13; ++k) (at(0.5 * (lo + hi)) <= t ? lo : hi) = 0.5 * (lo + hi);
+  for (double x = 0.0; x < from; x += 1.0) EXPECT_LT(at(x), t);  // below t between 0 and the bracket too
   const geometry::Region w = m.workspace();
   const Box bb = w.bbox();
   const double exact = w.intersect(geometry::rectangle({{-lo, bb.min.y - 1}, {lo, bb.max.y + 1}})).area();
   certified::LevelSetOptions o;
   o.relative_tolerance = 1e-9;
-  const auto r = criteria::limited_workspace(f, {{"velocity_ratio", t}}, o);
+  const auto r = criteria::limited_workspace(f, {{criterion, t}}, o);
   EXPECT_LE(r.region.area_lower, exact + 1e-9);
   EXPECT_GE(r.region.area_upper, exact - 1e-9);
   EXPECT_LE(r.region.width(), 1e-9 * exact);
-  EXPECT_EQ(r.detail.undecided_cells, 0u);  // every cell along the lines traced, also across W's boundary
+  return r.detail;
+}
+
+TEST(MomaCriteria, ParallelGuidesGiveVerticalVelocityBands) {
+  // ratio(0) = sqrt 2 < 1.5 < ratio(100).
+  const auto detail = expect_stripe("velocity_ratio", 1.5, 0.0, 100.0,
+                                    [](const mechanisms::Evaluation& e) { return *e.velocity_ratio; });
+  EXPECT_EQ(detail.undecided_cells, 0u);  // every cell along the lines traced, also across W's boundary
 }
 
 TEST(MomaCriteria, ParallelGuidesGiveVerticalConditionBands) {
-  // As for the velocity ratio: κ of M1 depends on x only; it stays near its
-  // minimum 2.29 for |x| < 60 and grows beyond, so {κ <= 2.5} = W ∩ {|x| <= x*}.
-  const auto f = moma("moma_m1_g0_l250");
-  const auto& m = as_moma(f);
-  const double t = 2.5;
-  const auto kappa_at = [&](double x) { return m.evaluate({x, -300.0, 0.0}, {}).front().condition_number; };
-  double lo = 40.0, hi = 150.0;
-  ASSERT_LT(kappa_at(lo), t);
-  ASSERT_GT(kappa_at(hi), t);
-  for (int k = 0; k < 200 && hi - lo > 1e-13; ++k) (kappa_at(0.5 * (lo + hi)) <= t ? lo : hi) = 0.5 * (lo + hi);
-  for (double x = 0.0; x < lo; x += 1.0) ASSERT_LT(kappa_at(x), t);
-  const geometry::Region w = m.workspace();
-  const Box bb = w.bbox();
-  const double exact = w.intersect(geometry::rectangle({{-lo, bb.min.y - 1}, {lo, bb.max.y + 1}})).area();
-  certified::LevelSetOptions o;
-  o.relative_tolerance = 1e-9;
-  const auto r = criteria::limited_workspace(f, {{"condition_number", t}}, o);
-  EXPECT_LE(r.region.area_lower, exact + 1e-9);
-  EXPECT_GE(r.region.area_upper, exact - 1e-9);
-  EXPECT_LE(r.region.width(), 1e-9 * exact);
+  // κ stays near its minimum 2.29 for |x| < 60 and grows beyond.
+  expect_stripe("condition_number", 2.5, 40.0, 150.0,
+                [](const mechanisms::Evaluation& e) { return e.condition_number; });
 }
 
 TEST(MomaCriteria, PressureAngleAndReactionAgainstADenseGrid) {
@@ -138,17 +123,10 @@ TEST(MomaCriteria, PressureAngleAndReactionAgainstADenseGrid) {
   EXPECT_LT(r.region.area_upper, 0.95 * w);
   EXPECT_LE(r.region.width(), 1e-7 * r.region.area_upper);
   // Cell-centre count on a 600² grid of the bounding box, through the evaluation.
-  const Box bb = m.bounds();
-  const int n = 600;
-  const double dx = bb.width() / n, dy = bb.height() / n;
-  long count = 0;
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      const auto e = m.evaluate({bb.min.x + (i + 0.5) * dx, bb.min.y + (j + 0.5) * dy, 0.0}, {});
-      count += e.front().reachable && e.front().pressure_angle_deg.at(0) <= alpha ? 1 : 0;
-    }
-  }
-  const double grid = static_cast<double>(count) * dx * dy;
+  const double grid = test::grid_area(m.bounds(), 600, [&](Point p) {
+    const auto e = m.evaluate({p.x, p.y, 0.0}, {});
+    return e.front().reachable && e.front().pressure_angle_deg.at(0) <= alpha;
+  });
   EXPECT_NEAR(grid, 0.5 * (r.region.area_lower + r.region.area_upper), 3e-3 * grid);
   // R = f / |sin ε| <= f / cos α is the same set as α <= acos(f / R).
   mechanisms::Criteria with_load;
