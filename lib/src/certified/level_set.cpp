@@ -133,6 +133,16 @@ class Tracer {
     return 0;
   }
   Sample solve(double u, double guess);
+  // ∫(env - v0) over the envelope's vertices from `first` on (relative to v0:
+  // no cancellation).
+  double integral(const std::vector<PLPoint>& env, std::size_t first) const {
+    double sum = 0.0;
+    for (std::size_t k = first; k + 1 < env.size(); ++k) {
+      const double du = env[k + 1].u - env[k].u;
+      if (du > 0.0) sum += 0.5 * du * ((env[k].w - v0_) + (env[k + 1].w - v0_));
+    }
+    return sum;
+  }
   void integrate(double a, double b, const Sample& sa, const Sample& sb, int depth);
   // Adds clamp(w(u), v0, v1) for the linear w from (a, wa) to (b, wb).
   void add_clamped(std::vector<PLPoint>& env, double a, double wa, double b, double wb) const;
@@ -158,6 +168,7 @@ class Tracer {
   bool failed_ = false;
   std::uint64_t points_ = 0;
   std::vector<PLPoint> env_lo_, env_hi_;
+  double gain_lo_ = 0.0, gain_hi_ = 0.0;  // quadrature over the envelopes' integrals
   CurvePiece curve_;
   static constexpr std::uint64_t max_points = 4096;
   static constexpr int max_depth = 30;
@@ -272,6 +283,22 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
       // g' = -F_u / F_v, g'' = -(F_uu + 2 F_uv g' + F_vv g'²) / F_v.
       const Interval g1 = -(fu / fv);
       const Interval g2 = -((fuu + Interval(2.0) * fuv * g1 + fvv * sqr(g1)) / fv);
+      if (g2.finite() && box_lo >= v0_ && box_hi <= v1_) {
+        // The graph stays in the cell over [a, b] (h = g): the trapezoid rule's
+        // remainder, ∫g = Δ (g(a) + g(b)) / 2 - g''(ξ) Δ³ / 12, with the signed
+        // enclosure of g'' gives a width (g''_hi - g''_lo) Δ³ / 12 = O(Δ⁴)
+        // (the envelopes' is O(Δ³)); the envelopes stay for the regions.
+        const double c = delta * delta * delta / 12.0;
+        const double q_lo = delta * (0.5 * (sa.lo + sb.lo) - v0_) - g2.hi * c;
+        const double q_hi = delta * (0.5 * (sa.hi + sb.hi) - v0_) - g2.lo * c;
+        if (q_hi - q_lo <= tau_ * delta || depth >= max_depth) {
+          const std::size_t nlo = env_lo_.size(), nhi = env_hi_.size();
+          accept(g2, true);
+          gain_lo_ += std::max(0.0, q_lo - integral(env_lo_, nlo));
+          gain_hi_ += std::max(0.0, integral(env_hi_, nhi) - q_hi);
+          return;
+        }
+      }
       if (accept(g2, depth >= max_depth)) return;
       if (g2.finite()) { split(); return; }
     }
@@ -314,17 +341,10 @@ bool Tracer::run(CellTrace& out) {
     integrate(us[i], us[i + 1], h[i], h[i + 1], 0);
   }
   if (failed_) return false;
-  // ∫(env - v0) over [u0, u1] (relative to v0: no cancellation).
-  auto integral = [&](const std::vector<PLPoint>& env) {
-    double sum = 0.0;
-    for (std::size_t k = 0; k + 1 < env.size(); ++k) {
-      const double du = env[k + 1].u - env[k].u;
-      if (du > 0.0) sum += 0.5 * du * ((env[k].w - v0_) + (env[k + 1].w - v0_));
-    }
-    return sum;
-  };
   const double span = u1_ - u0_;
-  const double ilo = integral(env_lo_), ihi = integral(env_hi_);
+  // The envelopes' integrals, tightened where the quadrature bound is better
+  // (both bound the same ∫(h - v0) piece by piece).
+  const double ilo = integral(env_lo_, 0) + gain_lo_, ihi = integral(env_hi_, 0) - gain_hi_;
   const double cell = span * (v1_ - v0_);
   double lower, upper;
   if (sgn_ > 0) {  // S below the curve: area ∫(h - v0)

@@ -10,7 +10,8 @@
 // TBB tasks. Empty intervals do not occur: operations whose argument leaves the
 // domain (sqrt of a negative number) clamp to the domain, which is what the
 // fields want (they are only evaluated over boxes ∩ their domain, see
-// criteria/field.hpp); division by an interval containing 0 gives the whole line.
+// criteria/field.hpp); division by an interval with 0 inside gives the whole line,
+// by one with 0 at an end a half-line (the quotient over the nonzero points).
 //
 // Jet<S>: value, gradient and Hessian of a function of (x, y) by forward
 // automatic differentiation, over any scalar S (double for points, Interval for
@@ -84,6 +85,10 @@ inline Interval operator-(const Interval& a) { return {-a.hi, -a.lo}; }
   return interval_detail::out(lo, hi);  // NaN from 0 * inf widens to infinity
 }
 inline Interval operator/(const Interval& a, const Interval& b) {
+  // 1/b over b's nonzero points: a half-line when 0 is an end of b (the
+  // quotient grows without bound towards it), the whole line when 0 is inside.
+  if (b.lo == 0.0 && b.hi > 0.0) return a * Interval(interval_detail::down(1.0 / b.hi), Interval::inf);
+  if (b.hi == 0.0 && b.lo < 0.0) return a * Interval(-Interval::inf, interval_detail::up(1.0 / b.lo));
   if (b.contains_zero()) return Interval::whole();
   const Interval r{1.0 / b.hi, 1.0 / b.lo};
   return a * interval_detail::out(r.lo, r.hi);

@@ -2,6 +2,8 @@
 // the platform twists, and the assembly-mode constraint (docs/theory/three_dof.md).
 #include "mechanisms/three_rpr/criteria.hpp"
 
+#include <type_traits>
+
 #include "criteria/support.hpp"
 
 namespace pkmws::criteria {
@@ -24,6 +26,9 @@ struct ThreeRprTwist {
   // the assembly mode of the reference point: no type-2 singularity crossed).
   int what = 0;
   double det_sign = 1.0;
+  // what == 0 over boxes: only the assembly mode det_sign det > 0 counts (the
+  // field comes with that mode's constraint, three_rpr_assembly_mode).
+  bool assembly_only = false;
   double f = 0.0, m = 0.0;
   std::optional<Box> window;
   std::optional<std::array<std::array<double, 2>, 3>> limits;
@@ -73,6 +78,7 @@ struct ThreeRprTwist {
     using std::abs;
     using std::sqrt;
     using certified::abs;
+    using certified::max;
     const Parts<T> p = parts(x, y);
     if (what == 2) return -det_sign * p.det;
     if (what == 1) {
@@ -83,11 +89,19 @@ struct ThreeRprTwist {
     }
     // docs/theory/three_dof.md: R_i,max = f |v_P,i| + |m| |ω_i|.
     const T num = f * sqrt(sqr(p.w0) + sqr(p.w1)) + m * abs(p.w2);
+    if constexpr (!std::is_same_v<T, double>) {
+      // Restricted to one assembly mode, |det| = det_sign det there: over a box
+      // across the singular curve it is [0, hi], so the bound is a half-line
+      // [R_lo, inf) (the reaction grows without bound towards the curve) instead
+      // of the whole line, and such boxes away from the 0/0 points are decided.
+      if (assembly_only) return sqrt(p.rho2) * num / max(det_sign * p.det, 0.0);
+    }
     return sqrt(p.rho2) * num / abs(p.det);
   }
   CellState domain(const Box& b) const {
     if (what == 2) return CellState::inside;  // a polynomial
     const Parts<Interval> p = parts(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y));
+    if (assembly_only && (det_sign * p.det).hi <= 0.0) return CellState::outside;  // the other mode
     if (p.det.contains_zero() || p.rho2.lo <= 0.0) return CellState::undecided;
     return CellState::inside;
   }
@@ -140,11 +154,25 @@ bool singular_everywhere(const ThreeRprTwist& t, const Box& box) {
 //   ∂q2/∂y = ∂J_x/∂y + b2 h2 ∂J_y/∂y / w2,
 // M = (l1 / l3) R(γ) (identity for the simplified scheme). Surrogate:
 // s_i = (∂q_i/∂y)², level(t) = t².
+// The sign of det A' at the reference point (det is the same for every leg
+// index up to the cyclic order of the rows, i.e. identical).
+double reference_det_sign(const ThreeRprTwist& t, Point reference) {
+  const double d = t.parts<double>(reference.x, reference.y).det;
+  if (!(d != 0.0) || !std::isfinite(d)) {
+    throw std::invalid_argument("three_rpr_assembly_mode: the reference point is type-2 singular");
+  }
+  return d > 0.0 ? 1.0 : -1.0;
+}
 }  // namespace
 
-CriterionField three_rpr_reaction(const mechanisms::ThreeRpr& mechanism, const mechanisms::Load& load, int leg) {
+CriterionField three_rpr_reaction(const mechanisms::ThreeRpr& mechanism, const mechanisms::Load& load, int leg,
+                                  std::optional<Point> assembly_reference) {
   if (leg < 0 || leg > 2) throw std::invalid_argument("three_rpr_reaction: leg must be 0, 1 or 2");
-  const ThreeRprTwist impl(mechanism, leg, 0, load);
+  ThreeRprTwist impl(mechanism, leg, 0, load);
+  if (assembly_reference) {
+    impl.assembly_only = true;
+    impl.det_sign = reference_det_sign(impl, *assembly_reference);
+  }
   CriterionField c;
   c.name = "reaction";
   c.unit = "N";
@@ -158,11 +186,7 @@ CriterionField three_rpr_reaction(const mechanisms::ThreeRpr& mechanism, const m
 
 CriterionField three_rpr_assembly_mode(const mechanisms::ThreeRpr& mechanism, Point reference) {
   ThreeRprTwist impl(mechanism, 0, 2, mechanisms::Load{});
-  const double d = impl.parts<double>(reference.x, reference.y).det;
-  if (!(d != 0.0) || !std::isfinite(d)) {
-    throw std::invalid_argument("three_rpr_assembly_mode: the reference point is type-2 singular");
-  }
-  impl.det_sign = d > 0.0 ? 1.0 : -1.0;
+  impl.det_sign = reference_det_sign(impl, reference);
   CriterionField c;
   c.name = "assembly_mode";
   c.unit = "";
@@ -213,20 +237,21 @@ class ThreeRprFields final : public CriterionFields {
     if (!rpr.leg_limits() && !rpr.analysis_window()) {
       throw std::invalid_argument("three_rpr level sets need leg_limits or an analysis_window");
     }
+    const geometry::Box b = rpr.bounds();
+    const Point centre{0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)};
     std::vector<int> legs = reaction_legs;
     if (legs.empty()) legs = {1, 2, 3};
     std::vector<CriterionField> out;
     for (int leg : legs) {
       if (name == "reaction") {
         if (!criteria.load) throw std::invalid_argument("the reaction criterion needs criteria.load");
-        out.push_back(three_rpr_reaction(rpr, *criteria.load, leg - 1));
+        out.push_back(three_rpr_reaction(rpr, *criteria.load, leg - 1, centre));
       } else {
         out.push_back(three_rpr_pressure_angle(rpr, leg - 1));
       }
     }
     // The platform stays in the assembly mode of the workspace's centre (it
     // cannot cross the type-2 singularity, [Briot] fig. 12's dashed curve).
-    const geometry::Box b = rpr.bounds();
     if (singular_everywhere(ThreeRprTwist(rpr, 0, 2, mechanisms::Load{}), b)) {
       // Reactions and pressure angles are infinite at every position: every
       // sub-level set is empty, known without refining anything.
@@ -236,7 +261,7 @@ class ThreeRprFields final : public CriterionFields {
       }
       return out;
     }
-    out.push_back(three_rpr_assembly_mode(rpr, {0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)}));
+    out.push_back(three_rpr_assembly_mode(rpr, centre));
     return out;
   }
 

@@ -1,0 +1,131 @@
+// Certified level sets next to the criteria's singular curves, where a box's
+// enclosure used to be the whole line: the biglide's velocity ratio grows
+// without bound at W's top and bottom edges (a leg's type-1 singularity), the
+// PAMINSA reaction at the type-2 singular circle. Both are now decided there;
+// the bounds are checked against an independent exact area (the biglide's
+// ratios depend on y only: W ∩ horizontal strips) and a dense grid (PAMINSA),
+// and against the pure cell method (layer a), whose intervals they must meet.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "mechanisms/three_rpr/criteria.hpp"
+#include "pkmws/criteria/fields.hpp"
+#include "pkmws/geometry/primitives.hpp"
+#include "pkmws/io/mechanism_file.hpp"
+#include "support/fixtures.hpp"
+
+namespace {
+
+using namespace pkmws;
+using geometry::Box;
+using geometry::Point;
+
+// The file's criteria-limited set: traced (the method) or cells only (layer a,
+// a shallow quadtree: wide but independent bounds).
+criteria::LimitedWorkspace limited(const io::MechanismFile& f, double tol, bool trace) {
+  certified::LevelSetOptions o;
+  o.relative_tolerance = tol;
+  o.trace = trace;
+  if (!trace) o.refine_depth = 4;
+  return criteria::limited_workspace(f, criteria::file_limits(f), o);
+}
+
+void expect_meet(const certified::CertifiedRegion& a, const certified::CertifiedRegion& b) {
+  EXPECT_LE(a.area_lower, b.area_upper);
+  EXPECT_LE(b.area_lower, a.area_upper);
+}
+
+// y-intervals where both ratios hold, by scanning and bisecting the surrogate's
+// sign changes to rounding; their strips cut W exactly.
+double biglide_reference(const io::MechanismFile& f) {
+  const auto fields = criteria::fields_for(f, "velocity_ratio");
+  const double limit = *f.criteria.max_velocity_ratio;
+  const Box w = f.model->workspace().bbox();
+  auto holds = [&](double y) {
+    for (const auto& c : fields) {
+      if (!(c.surrogate->value({0.5 * (w.min.x + w.max.x), y}) <= c.level(limit))) return false;
+    }
+    return true;
+  };
+  const int n = 20000;
+  std::vector<std::pair<double, double>> runs;
+  double start = 0.0;
+  bool in = false;
+  auto edge = [&](double a, double b) {  // holds(a) != holds(b)
+    const bool ha = holds(a);
+    for (int k = 0; k < 200 && b - a > 1e-13 * (std::abs(a) + std::abs(b)); ++k) {
+      const double m = 0.5 * (a + b);
+      (holds(m) == ha ? a : b) = m;
+    }
+    return 0.5 * (a + b);
+  };
+  double prev = w.min.y;
+  for (int k = 0; k <= n; ++k) {
+    const double y = w.min.y + w.height() * k / n;
+    const bool h = holds(y);
+    if (k == 0) {
+      in = h;
+      start = y;
+    } else if (h != in) {
+      const double e = edge(prev, y);
+      if (in) runs.emplace_back(start, e);
+      start = e;
+      in = h;
+    }
+    prev = y;
+  }
+  if (in) runs.emplace_back(start, w.max.y);
+  geometry::Region strips;
+  for (const auto& [a, b] : runs) {
+    Box s;
+    s.min = {w.min.x - 1.0, a};
+    s.max = {w.max.x + 1.0, b};
+    strips = strips.unite(geometry::rectangle(s));
+  }
+  return f.model->workspace().intersect(strips).area();
+}
+
+TEST(LevelSetsSingular, BiglideVelocityRatioAgainstTheExactStripArea) {
+  const io::MechanismFile f = io::load_mechanism(test::dataset("biglide_simplified_vratio2"));
+  const double exact = biglide_reference(f);
+  const auto r = limited(f, 1e-9, true);
+  EXPECT_EQ(r.detail.undecided_cells, 0u);  // the edges' cells are decided outside
+  EXPECT_LE(r.region.width(), 1e-9 * exact);
+  // The strips' edges are found to ~1e-13 relative (x W's width ~2000 mm).
+  const double slack = 1e-13 * 2000.0 * 2000.0 * 4;
+  EXPECT_LE(r.region.area_lower, exact + slack);
+  EXPECT_GE(r.region.area_upper, exact - slack);
+  expect_meet(r.region, limited(f, 1e-3, false).region);
+}
+
+TEST(LevelSetsSingular, PaminsaReactionAcrossTheSingularCircleAgainstAGrid) {
+  const io::MechanismFile f = io::load_mechanism(test::dataset("three_rpr_paminsa_phi0_r110"));
+  const auto r = limited(f, 1e-6, true);
+  EXPECT_LE(r.region.width(), 1e-6 * r.region.area_upper);
+  expect_meet(r.region, limited(f, 1e-3, false).region);
+  const auto& m = *f.model;
+  const Box b = m.bounds();
+  const auto fc = criteria::fields_for(f, "reaction");
+  ASSERT_EQ(fc.back().name, "assembly_mode");
+  // A dense grid of the criterion in the centre's assembly mode.
+  const double limit = *f.criteria.max_reaction_N;
+  const int n = 1200;
+  const double grid = test::grid_area(b, n, [&](Point p) {
+    if (!m.reachable({p.x, p.y, m.orientation()})) return false;
+    for (const auto& c : fc) {
+      const double level = c.name == "assembly_mode" ? c.level(0.0) : c.level(limit);
+      if (!(c.value(p) <= level)) return false;
+    }
+    return true;
+  });
+  // Grid error: cells met by the boundary, generously 4 x perimeter / h cells of area h².
+  const double h = std::max(b.width(), b.height()) / n;
+  const double slack = 4.0 * 2.0 * (b.width() + b.height()) * h;
+  EXPECT_LE(r.region.area_lower, grid + slack);
+  EXPECT_GE(r.region.area_upper, grid - slack);
+}
+
+}  // namespace
