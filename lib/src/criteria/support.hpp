@@ -31,11 +31,17 @@ inline certified::Interval dist2(const geometry::Box& b, geometry::Point c) {
          certified::sqr(certified::Interval(b.min.y, b.max.y) - certified::Interval(c.y));
 }
 
-// dq/dP of a two-actuator point platform, by rows (m_0, m_1).
+// dq/dP of a two-actuator point platform, by rows m_i = (x_i, y_i) / d_i: a
+// row that grows without bound at a leg's type-1 singularity is given as a
+// bounded numerator over a denominator d_i -> 0 there (d_i = 1 otherwise).
 template <class T> struct Rows2 {
   T x0, y0, x1, y1;
-  T frobenius2() const { return x0 * x0 + y0 * y0 + x1 * x1 + y1 * y1; }  // F = σ_1² + σ_2²
-  T det() const { return x0 * y1 - y0 * x1; }                              // ± σ_1 σ_2
+  T d0 = T(1.0), d1 = T(1.0);
+  T n0() const { return x0 * x0 + y0 * y0; }  // |numerators|²
+  T n1() const { return x1 * x1 + y1 * y1; }
+  T cross() const { return x0 * y1 - y0 * x1; }
+  T frobenius2() const { return n0() / (d0 * d0) + n1() / (d1 * d1); }  // F = σ_1² + σ_2²
+  T det() const { return cross() / (d0 * d1); }                          // ± σ_1 σ_2
 };
 
 // σ_max² = (F + sqrt(F² - 4 det²)) / 2: the squared velocity ratio (worst
@@ -51,8 +57,10 @@ template <class T> T sigma_max2(const Rows2<T>& m) {
 // The condition number κ = σ_1 / σ_2 >= 1 satisfies κ + 1/κ = F / |det|, so
 // κ <= t  <=>  -(det / F)² <= -1 / (t + 1/t)²: a surrogate smooth wherever
 // F > 0, also across type-2 singularities (det = 0, κ infinite).
+// det / F = cross d0 d1 / (n0 d1² + n1 d0²): bounded also where a row is not,
+// so boxes at a type-1 singularity (κ infinite, q -> 0) are decided.
 template <class T> T kappa_surrogate(const Rows2<T>& m) {
-  const T q = m.det() / m.frobenius2();
+  const T q = m.cross() * (m.d0 * m.d1) / (m.n0() * (m.d1 * m.d1) + m.n1() * (m.d0 * m.d0));
   return -(q * q);
 }
 inline double kappa_level(double t) {

@@ -63,15 +63,10 @@ struct FiveBarCosEps {
   }
   // Rows of dq/dC: differentiating |C - B_i|² = l_i2² with B_i - A_i = w - u_i
   // gives dq_i = u_i . dC / (w_i x u_i) (the eval's B⁻¹A, docs/theory/five_bar.md).
+  // As u_i / (w_i x u_i) (the cross product vanishes at a leg's type-1 singularity).
   template <class T> Rows2<T> rows(const T& x, const T& y) const {
-    std::array<T, 2> mx, my;
-    for (std::size_t i = 0; i < 2; ++i) {
-      const Leg<T> g = leg(i, x, y);
-      const T cross = g.wx * g.uy - g.wy * g.ux;
-      mx[i] = g.ux / cross;
-      my[i] = g.uy / cross;
-    }
-    return {mx[0], my[0], mx[1], my[1]};
+    const Leg<T> g0 = leg(0, x, y), g1 = leg(1, x, y);
+    return {g0.ux, g0.uy, g1.ux, g1.uy, g0.wx * g0.uy - g0.wy * g0.ux, g1.wx * g1.uy - g1.wy * g1.ux};
   }
   // Smooth where every leg is strictly inside its annulus (D > 0, r > 0).
   CellState domain(const Box& b) const {

@@ -58,19 +58,20 @@ struct MomaTransmission {
     }
     return (ux[0] * ux[1] + uy[0] * uy[1]) / (T(l[0]) * T(l[1]));
   }
-  // Rows m_i = a_i - b_i c_i n_i of dq/dP.
+  // Rows m_i = a_i - b_i c_i n_i of dq/dP, c_i = across_i / r_i: as
+  // (r_i a_i - b_i across_i n_i) / r_i (r_i -> 0 at a rod's type-1 singularity).
   template <class T> Rows2<T> rows(const T& x, const T& y) const {
     using certified::max;
     using certified::sqrt;
     using std::sqrt;
-    std::array<T, 2> mx, my;
+    std::array<T, 2> mx, my, d;
     for (std::size_t i = 0; i < 2; ++i) {
       const Leg<T> g = leg(i, x, y);
-      const T c = g.across / sqrt(max(g.r2, 0.0));
-      mx[i] = a[i].x - b[i] * (c * n[i].x);
-      my[i] = a[i].y - b[i] * (c * n[i].y);
+      d[i] = sqrt(max(g.r2, 0.0));
+      mx[i] = a[i].x * d[i] - b[i] * (g.across * n[i].x);
+      my[i] = a[i].y * d[i] - b[i] * (g.across * n[i].y);
     }
-    return {mx[0], my[0], mx[1], my[1]};
+    return {mx[0], my[0], mx[1], my[1], d[0], d[1]};
   }
   // Smooth where both rods are strictly off the guides' normals (r_i > 0).
   CellState domain(const Box& box) const {
