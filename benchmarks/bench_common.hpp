@@ -34,4 +34,7 @@ inline const std::vector<Case>& report_cases() {
   return cases;
 }
 
+/// The certified level-set cases (bench_levels.cpp), registered from main.
+void register_level_set_benchmarks();
+
 }  // namespace pkmws::bench

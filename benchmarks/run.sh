@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # make bench: the Google Benchmark suite (short, bounded runs), then the report
 # generator, which measures exact against grid and writes docs/benchmarks.md
-# and docs/figures/bench_error_vs_time.svg. A few minutes on 2 cores. When the
+# and docs/figures/bench_error_vs_time.svg, then benchmarks/level_sets.py its
+# section "Certified level sets". About a quarter of an hour on 2 cores. When the
 # Python module is built (build/python), benchmarks/python_overhead.py then
 # replaces the report's section "Python module overhead" (Python against C++
 # per call and per point, measured side by side) and
@@ -29,6 +30,8 @@ mkdir -p "$root/docs/figures"
   --out "$root/docs/benchmarks.md" \
   --figure "$root/docs/figures/bench_error_vs_time.svg" \
   --gbench "$build/bench.json"
+# Certified level sets against grids of the same criteria (the levels/ cases).
+python3 "$root/benchmarks/level_sets.py" --gbench "$build/bench.json" --report "$root/docs/benchmarks.md"
 if compgen -G "$build/python/pkmws/_pkmws*.so" >/dev/null; then
   # The interpreter the module was built for (CMake cache), else python3.
   py="$(sed -n 's/^PKMWS_PYTHON3:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/null | head -n 1)"
