@@ -7,9 +7,9 @@
 //    (counter `stopped` = 1 when it was reached: the bounds are then wider);
 //  - side by side (threads:1 cases), a uniform grid of the same criteria (every
 //    field of the file's limits, with the 3-RPR's assembly-mode constraint, at
-//    cell centres, in C++): the first N (steps of √2 from 64, up to 8192 per
+//    cell centres, in C++): the first N (steps of √2 from 64, up to 4096 per
 //    side) whose area lands inside the certified bounds ("first hit") and its
-//    time (no hit: N = 0 and the time of the 8192² grid), and the N its error
+//    time (no hit: N = 0 and the time of the 4096² grid), and the N its error
 //    envelope (relative error x N) needs for 1e-6.
 // benchmarks/level_sets.py turns the counters into the report's table.
 #include <benchmark/benchmark.h>
@@ -92,7 +92,7 @@ void BM_Certified(benchmark::State& state, std::string stem, double tolerance, i
   const PointTest in = point_test(file);
   const geometry::Box w = file.model->workspace().bbox();
   double hit_n = 0.0, hit_s = 0.0, envelope = 0.0;
-  for (double x = 64.0; x <= 8192.0 * 1.0001; x *= std::sqrt(2.0)) {
+  for (double x = 64.0; x <= 4096.0 * 1.0001; x *= std::sqrt(2.0)) {
     const int n = static_cast<int>(std::lround(x));
     const auto start = Clock::now();
     const double a = grid_area(in, w, n);
@@ -104,7 +104,7 @@ void BM_Certified(benchmark::State& state, std::string stem, double tolerance, i
       break;
     }
   }
-  state.counters["grid_first_hit_N"] = hit_n;  // 0: no hit up to 8192
+  state.counters["grid_first_hit_N"] = hit_n;  // 0: no hit up to 4096
   state.counters["grid_first_hit_s"] = hit_s;
   state.counters["grid_N_for_1e-6"] = envelope / 1e-6;
 }

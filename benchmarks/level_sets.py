@@ -26,12 +26,15 @@ def fmt_time(s):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--gbench", required=True, type=pathlib.Path, help="Google Benchmark JSON output")
+    ap.add_argument("--gbench", required=True, type=pathlib.Path, action="append",
+                    help="Google Benchmark JSON output (repeat to join runs of different cases)")
     ap.add_argument("--report", required=True, type=pathlib.Path, help="docs/benchmarks.md")
     a = ap.parse_args()
-    runs = json.loads(a.gbench.read_text(encoding="utf-8"))
+    benchmarks = []
+    for path in a.gbench:
+        benchmarks += json.loads(path.read_text(encoding="utf-8")).get("benchmarks", [])
     cases = {}
-    for b in runs.get("benchmarks", []):
+    for b in benchmarks:
         name = b["name"].replace("/iterations:1", "")
         parts = name.split("/")
         if parts[0] != "levels" or "error_occurred" in b:
@@ -40,7 +43,7 @@ def main():
         key = parts[1] + ("/" + parts[3] if len(parts) > 3 else "")
         cases.setdefault(stem, {})[key] = b
     if not cases:
-        print("level_sets.py: no levels/ cases in", a.gbench, file=sys.stderr)
+        print("level_sets.py: no levels/ cases in", *a.gbench, file=sys.stderr)
         return 2
     rows = []
     met6 = met9 = beat = 0
@@ -70,7 +73,7 @@ def main():
             beat += ratio > 1
             ratio_txt = f"{ratio:.2g}"
         else:
-            grid_txt = f"none up to 8192² ({fmt_time(hit_s)})"
+            grid_txt = f"none up to 4096² ({fmt_time(hit_s)})"
             beat += 1
             ratio_txt = "∞"
         rows.append(
