@@ -15,7 +15,7 @@ namespace {
 // Chain i at orientation φ: side line i is {X : n_i . (X - P - c_i) = 0} with
 // n_i = R(φ) n'_i, c_i = R(φ) B'_i, so A_i's level on it,
 // ℓ_i = n_i . (P + c_i - O_i) = n_i . P + k_i, is linear in P
-// (ThreeRrp::inverse_chain). A_i (three_rrp.hpp):
+// (ThreeRrp::inverse_chain). A_i ([Mitsi] eq. 1-2 put on side line i; three_rrp.hpp):
 //   3-PRP: A_i = O_i + (ℓ_i / (n_i . d_i)) d_i,                 B_ii = n_i . d_i;
 //   3-RRP: A_i = O_i + ℓ_i n_i + σ_i w_i J n_i, w_i = sqrt(r_i² - ℓ_i²),
 //          B_ii = r_i u(φ_i) x n_i = -σ_i w_i (working mode σ_i).
