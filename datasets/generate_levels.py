@@ -45,6 +45,26 @@ for phi in (0, 25, 50):
         d["analysis_window"] = [[-0.32, -0.32], [0.32, 0.32]]
         write(f"three_rpr_paminsa_phi{phi}_r{rmax}", d)
 
+# PAMINSA at phi = 0 with the condition number of the homogenised Jacobian
+# dq/dx', x' = (x, y, L phi), L the platform's circumradius (0.1 m, the default
+# of criteria.characteristic_length): the region kappa <= 4 around the centre
+# (docs/theory/level_sets.md, 3-RPR conditioning; not a figure of [Briot]).
+d = derived(base, "Planar PAMINSA, phi = 0 deg, condition number <= 4",
+            {"max_condition_number": 4.0},
+            "Fig. 11 mechanism; sub-level set of the condition number of dq/dx' (not in the paper)")
+d["orientation_deg"] = 0.0
+d["analysis_window"] = [[-0.32, -0.32], [0.32, 0.32]]
+write("three_rpr_paminsa_phi0_kappa4", d)
+
+# The 3-PRP example with every chain's pressure angle ([Briot]'s method on
+# [Mitsi]'s chains) at most 20 deg, at the file's orientation
+# (docs/theory/level_sets.md, 3-RRP / 3-PRP; not a figure of either paper).
+base_prp = json.load(open(os.path.join(here, "three_prp_example.json")))
+write("three_prp_example_alpha20",
+      derived(base_prp, "3-PRP example, pressure angle <= 20 deg",
+              {"max_pressure_angle_deg": 20.0},
+              "sub-level set of the chains' pressure angles (not in the paper)"))
+
 # Biglide, simplified scheme ([Strutynskyi] fig. 8): the workspace where both
 # actuators move at most t times faster than the tool along y, V_i / V_y <= t.
 base = json.load(open(os.path.join(here, "biglide_simplified.json")))
@@ -53,6 +73,13 @@ for ratio in (2,):
           derived(base, f"Biglide, simplified scheme, velocity ratio V_i/V_y <= {ratio}",
                   {"max_velocity_ratio": float(ratio)},
                   f"Fig. 8 (velocity ratio V/V_y), sub-level set V_i/V_y <= {ratio} for both sliders"))
+
+# The same biglide with the rods' pressure angle alpha = acos|sin eps| <= 20 deg
+# ([Briot]'s criterion on the simplified scheme; docs/theory/level_sets.md).
+write("biglide_simplified_alpha20",
+      derived(base, "Biglide, simplified scheme, pressure angle <= 20 deg",
+              {"max_pressure_angle_deg": 20.0},
+              "Fig. 3 (simplified scheme); sub-level set of the rods' pressure angle (not in the paper)"))
 
 # MOMA M1 (gamma = -5 deg, 180 mm rods): the workspace where the rods' pressure
 # angle stays below 15 deg, and where dq/dP is conditioned better than 3

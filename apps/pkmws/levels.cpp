@@ -29,7 +29,7 @@ void add_levels(CLI::App& app, std::vector<Command>& commands) {
   };
   auto a = std::make_shared<Args>();
   sub->add_option("FILE", a->file, "Mechanism file (JSON)")->required();
-  sub->add_option("--criterion", a->criterion, "pressure_angle (deg) | reaction (N) | velocity_ratio (biglide V_i/V_y; moma, five_bar |dq|/|dP|) | condition_number")->required();
+  sub->add_option("--criterion", a->criterion, "pressure_angle (deg) | reaction (N) | velocity_ratio (biglide V_i/V_y; moma, five_bar |dq|/|dP|; 3-DOF |dq|/|dx'|) | condition_number")->required();
   sub->add_option("--levels", a->levels, "Increasing thresholds, e.g. 20,40,60,80")->required();
   sub->add_option("--tolerance", a->tolerance, "Target bound width relative to each area (default 1e-6)");
   sub->add_option("--svg", a->svg, "Write the band figure (SVG)");

@@ -192,3 +192,28 @@ TEST_F(Cli, ExportWritesTheBandsOfACriterion) {
 }
 
 }  // namespace
+
+namespace {
+
+// criteria.characteristic_length: a bad value or a 2-DOF mechanism is one line
+// naming the field, exit status 2; the 3-RPR's eval states the L it used.
+TEST_F(Cli, CharacteristicLengthErrorsAndEval) {
+  auto doc = nlohmann::json::parse(slurp(dataset("three_rpr_paminsa_phi0_r200.json")));
+  doc["criteria"]["characteristic_length"] = -1.0;
+  auto r = run("area " + write("bad_length.json", doc.dump()).string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("criteria.characteristic_length"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
+  auto five_bar = nlohmann::json::parse(slurp(dataset("five_bar_dextar_pp.json")));
+  five_bar["criteria"] = {{"characteristic_length", 0.1}};
+  r = run("info " + write("five_bar_length.json", five_bar.dump()).string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("criteria.characteristic_length"), std::string::npos) << r.err;
+  doc["criteria"]["characteristic_length"] = 0.25;
+  r = run("eval " + write("length.json", doc.dump()).string() + " 0.05 -0.03 0 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("characteristic_length"), std::string::npos);
+  EXPECT_NE(r.out.find("0.25"), std::string::npos);
+}
+
+}  // namespace

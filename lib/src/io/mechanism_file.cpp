@@ -43,7 +43,7 @@ mechanisms::Criteria read_criteria(detail::JsonReader& doc, std::vector<int>& re
   if (!doc.has("criteria")) return c;
   auto r = doc.object("criteria");
   r.declare_fields({"max_pressure_angle_deg", "max_reaction_N", "load", "max_velocity_ratio", "max_condition_number",
-                    "reaction_legs"});
+                    "characteristic_length", "reaction_legs"});
   if (r.has("reaction_legs")) {
     const auto& v = r.raw("reaction_legs");
     if (!v.is_array() || v.empty()) r.fail("reaction_legs", "expected a non-empty list of leg numbers (1-based)");
@@ -66,6 +66,7 @@ mechanisms::Criteria read_criteria(detail::JsonReader& doc, std::vector<int>& re
     if (!(k >= 1.0) || !std::isfinite(k)) r.fail("max_condition_number", "must be at least 1 (a condition number is >= 1)");
     c.max_condition_number = k;
   }
+  c.characteristic_length = r.optional_positive("characteristic_length");
   if (r.has("load")) {
     auto l = r.object("load");
     l.declare_fields({"force_N", "moment_Nm"});
@@ -102,6 +103,10 @@ MechanismFile parse_mechanism(const nlohmann::json& document, const std::string&
   file.criteria = read_criteria(doc, file.reaction_legs);
   file.model = find_kind(file.mechanism)->load(doc);
   if (doc.has("bodies")) file.bodies = detail::load_bodies(doc, file.model);
+  if (file.criteria.characteristic_length && file.model->dof() != 3) {
+    throw InputError("criteria.characteristic_length: applies to the 3-DOF mechanisms (three_rpr, three_rrp, "
+                     "three_prp), not " + file.mechanism);
+  }
   for (int leg : file.reaction_legs) {
     if (leg > file.model->dof() || file.model->dof() < 2) {
       throw InputError("criteria.reaction_legs: leg " + std::to_string(leg) + " does not exist (the mechanism has " +

@@ -1,5 +1,6 @@
 // Certified sub-level sets of the biglide velocity ratio V_i/V_y = |∂q_i/∂y|
-// ([Strutynskyi] fig. 8) over the exact simplified-scheme workspace.
+// ([Strutynskyi] fig. 8), condition number, pressure angle and reaction over
+// the exact simplified-scheme workspace.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -122,12 +123,89 @@ TEST(BiglideConditionNumber, SurrogateAgreesWithTheEvaluationAndBoundsAGrid) {
   EXPECT_NEAR(grid, 0.5 * (r.region.area_lower + r.region.area_upper), 3e-3 * grid);
 }
 
-TEST(BiglideVelocityRatio, OtherMechanismsAndTheRealSchemeAreRefusedClearly) {
+TEST(BiglideVelocityRatio, TheRealSchemeAndAReactionWithoutLoadAreRefusedClearly) {
   const auto real = io::load_mechanism(dataset("biglide_real"));
-  EXPECT_THROW(criteria::fields_for(real, "velocity_ratio"), io::InputError);
-  EXPECT_THROW(criteria::fields_for(simplified(), "pressure_angle"), io::InputError);
+  for (const char* name : {"velocity_ratio", "pressure_angle", "condition_number"}) {
+    EXPECT_THROW(criteria::fields_for(real, name), io::InputError) << name;
+  }
+  EXPECT_THROW(criteria::fields_for(simplified(), "reaction"), io::InputError);  // no criteria.load
+  // The 3-RPR without leg limits or an analysis window has no bounded region.
   const auto paminsa = io::load_mechanism(dataset("three_rpr_paminsa"));
   EXPECT_THROW(criteria::fields_for(paminsa, "velocity_ratio"), io::InputError);
+}
+
+// The rods of the paper's branches from the inverse kinematics: sin ε, independently of the fields.
+double sin_eps(const mechanisms::Biglide& m, Point p) {
+  const auto q = m.inverse_joints(p);
+  const Point s1 = m.slider(0, (*q)[0]), s2 = m.slider(1, (*q)[1]);
+  const Point u1 = p - s1, u2 = p - s2;
+  return (u1.x * u2.y - u1.y * u2.x) / (std::hypot(u1.x, u1.y) * std::hypot(u2.x, u2.y));
+}
+
+TEST(BiglidePressureAngle, FieldsAgreeWithEvalAndTheAngleBetweenTheRods) {
+  const auto f = simplified();
+  const auto& m = dynamic_cast<const mechanisms::Biglide&>(*f.model);
+  const auto alpha = criteria::biglide_pressure_angle(m);
+  const auto reaction = criteria::biglide_reaction(m, 100.0);
+  mechanisms::Criteria loaded;
+  loaded.load = mechanisms::Load{100.0, 0.0};
+  const auto box = m.bounds();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> ux(box.min.x, box.max.x), uy(box.min.y, box.max.y);
+  int checked = 0;
+  for (int n = 0; n < 4000 && checked < 300; ++n) {
+    const Point p{ux(rng), uy(rng)};
+    const auto e = m.evaluate({p.x, p.y, 0.0}, loaded);
+    const auto own = std::find_if(e.begin(), e.end(), [](const auto& v) { return v.mode == "--"; });
+    if (own == e.end() || !own->reachable || own->singular) continue;
+    const double s = sin_eps(m, p);
+    const double a = std::acos(std::abs(s)) * 180.0 / std::acos(-1.0);
+    EXPECT_NEAR(own->pressure_angle_deg.at(0), a, 1e-9);
+    EXPECT_NEAR(own->reactions_N.at(0), 100.0 / std::abs(s), 1e-9 * own->reactions_N.at(0));
+    EXPECT_DOUBLE_EQ(alpha.value(p), own->pressure_angle_deg.at(0));
+    EXPECT_DOUBLE_EQ(reaction.value(p), own->reactions_N.at(0));
+    EXPECT_NEAR(alpha.surrogate->value(p), 1.0 - s * s, 1e-12);  // cos²ε
+    test::expect_same_sublevel(alpha, p, a, {10.0, 30.0, 45.0, 70.0});
+    test::expect_same_sublevel(reaction, p, 100.0 / std::abs(s), {110.0, 150.0, 400.0});
+    ++checked;
+  }
+  EXPECT_EQ(checked, 300);
+  // Jets against finite differences, enclosures over random boxes (mm).
+  std::uniform_real_distribution<double> size(0.05, 20.0);
+  int boxes = 0;
+  for (int n = 0; n < 2000 && boxes < 30; ++n) {
+    const Point p{ux(rng), uy(rng)};
+    const double h = size(rng);
+    const geometry::Box b{{p.x - h, p.y - h}, {p.x + h, p.y + h}};
+    if (alpha.surrogate->domain(b) != certified::CellState::inside) continue;
+    test::check_field(*alpha.surrogate, p, 1e-2, b);
+    ++boxes;
+  }
+  EXPECT_EQ(boxes, 30);
+}
+
+TEST(BiglidePressureAngle, CertifiedBoundsContainAGridAndTheReactionGivesTheSameRegion) {
+  const auto f = io::load_mechanism(dataset("biglide_simplified_alpha20"));
+  const auto& m = dynamic_cast<const mechanisms::Biglide&>(*f.model);
+  certified::LevelSetOptions o;
+  o.relative_tolerance = 1e-6;
+  const double limit = *f.criteria.max_pressure_angle_deg;
+  const auto r = criteria::limited_workspace(f, criteria::file_limits(f), o);
+  EXPECT_LT(r.region.width(), 1e-5 * r.region.area_upper);
+  EXPECT_LT(r.region.area_upper, 0.9 * m.workspace().area());
+  const auto box = m.bounds();
+  const int n = 1200;
+  const double grid = test::grid_area(box, n, [&](Point p) {
+    return m.reachable({p.x, p.y, 0.0}) && std::acos(std::abs(sin_eps(m, p))) * 180.0 / std::acos(-1.0) <= limit;
+  });
+  EXPECT_NEAR(grid, 0.5 * (r.region.area_lower + r.region.area_upper), 2e-3 * grid);
+  // R = f / |sin ε| <= f / cos α_max is the same region.
+  auto with_load = f;
+  with_load.criteria.load = mechanisms::Load{100.0, 0.0};
+  const double r_max = 100.0 / std::cos(limit * std::acos(-1.0) / 180.0);
+  const auto rr = criteria::limited_workspace(with_load, {{"reaction", r_max}}, o);
+  EXPECT_LE(rr.region.area_lower, r.region.area_upper);
+  EXPECT_GE(rr.region.area_upper, r.region.area_lower);
 }
 
 }  // namespace

@@ -68,6 +68,9 @@ struct Criteria {
   std::optional<Load> load;
   std::optional<double> max_velocity_ratio;
   std::optional<double> max_condition_number;
+  /// L of the homogenised Jacobian dq/dx', x' = (x, y, L φ), of a 3-DOF
+  /// mechanism (condition number, velocity ratio); none: the mechanism's default.
+  std::optional<double> characteristic_length;
   bool any() const {
     return max_pressure_angle_deg || max_reaction_N || max_velocity_ratio || max_condition_number;
   }

@@ -1,5 +1,6 @@
-// Biglide velocity-ratio fields ([Strutynskyi] fig. 8), one per leg, and the
-// condition number of dq/dP.
+// Biglide velocity-ratio fields ([Strutynskyi] fig. 8), one per leg, the
+// condition number of dq/dP, and (simplified scheme) the pressure angle and
+// reaction of the two rods ([Briot]'s two-force members, as the five-bar's).
 #include "mechanisms/biglide/criteria.hpp"
 
 #include <Eigen/SVD>
@@ -86,7 +87,40 @@ struct BiglideVelocityRatio {
   }
 };
 
+// The simplified scheme as a point platform (criteria/support.hpp): the rods
+// are two-force members meeting at the tool, u_1 = P - S_1 = (w_1, h_1) and
+// u_2 = P - S_2 = (w_2, y - B) on the paper's branches (q_i = x - w_i,
+// [Strutynskyi] eq. 5-6), so cos ε = u_1 . u_2 / (l_1 l_2) as in Biglide::evaluate.
+struct BiglideRods {
+  BiglideVelocityRatio legs;
+  double l1 = 0.0, l2 = 0.0;
+  explicit BiglideRods(const mechanisms::Biglide& m)
+      : legs(m, 0), l1(m.params().rods[0]), l2(m.params().rods[1]) {}
+  template <class T> T cos_eps(const T& x, const T& y) const {
+    using certified::max;
+    using certified::sqrt;
+    using std::sqrt;
+    const auto p = legs.parts(x, y);
+    const T w1 = sqrt(max(p.w1sq, 0.0)), w2 = sqrt(max(p.w2sq, 0.0));
+    return (w1 * w2 - p.h1 * p.h2) / (l1 * l2);  // u_1 . u_2 with u_2,y = y - B = -h_2
+  }
+  template <class T> Rows2<T> rows(const T& x, const T& y) const {
+    const auto p = legs.parts(x, y);
+    return {T(1.0), p.dq1, T(1.0), p.dq2};
+  }
+  CellState domain(const Box& b) const { return legs.domain(b); }
+  CellState within(const Box& b) const { return legs.within(b); }
+};
+
 }  // namespace
+
+CriterionField biglide_pressure_angle(const mechanisms::Biglide& mechanism) {
+  return point_platform_field(BiglideRods(mechanism), mechanism, "biglide", "pressure_angle");
+}
+
+CriterionField biglide_reaction(const mechanisms::Biglide& mechanism, double force_N) {
+  return point_platform_field(BiglideRods(mechanism), mechanism, "biglide", "reaction", force_N);
+}
 
 CriterionField biglide_velocity_ratio(const mechanisms::Biglide& mechanism, int leg) {
   const BiglideVelocityRatio impl(mechanism, leg);
@@ -129,24 +163,25 @@ CriterionField biglide_condition_number(const mechanisms::Biglide& mechanism) {
 
 namespace {
 
-// Capability criteria::CriterionFields of the biglide: the velocity ratio and
-// the condition number.
+// Capability criteria::CriterionFields of the biglide: the velocity ratio, the
+// condition number, and the pressure angle and reaction of the rods.
 class BiglideFields final : public CriterionFields {
  public:
   explicit BiglideFields(const mechanisms::Biglide* m) : m_(m) {}
-  std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& /*criteria*/,
+  std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& criteria,
                                      const std::vector<int>& /*reaction_legs*/) const override {
-    if (name != "velocity_ratio" && name != "condition_number") {
-      throw std::invalid_argument("for the biglide the certified level sets are of the velocity ratio and the "
-                                  "condition number (criteria.max_velocity_ratio, max_condition_number); pkmws eval "
-                                  "gives pressure angles and reactions at a pose");
-    }
     if (m_->real_scheme()) {
-      throw std::invalid_argument("velocity-ratio level sets need the exact workspace of the simplified "
-                                  "scheme; the real scheme's workspace is itself certified (coupler-curve boundary)");
+      throw std::invalid_argument("biglide level sets need the exact workspace of the simplified scheme; the real "
+                                  "scheme's workspace is itself certified (coupler-curve boundary), and its criteria "
+                                  "are given at a pose by pkmws eval");
     }
     if (name == "condition_number") return {biglide_condition_number(*m_)};
-    return {biglide_velocity_ratio(*m_, 0), biglide_velocity_ratio(*m_, 1)};
+    if (name == "velocity_ratio") return {biglide_velocity_ratio(*m_, 0), biglide_velocity_ratio(*m_, 1)};
+    if (name == "reaction") {
+      if (!criteria.load) throw std::invalid_argument("the reaction criterion needs criteria.load");
+      return {biglide_reaction(*m_, criteria.load->force_N)};
+    }
+    return {biglide_pressure_angle(*m_)};
   }
 
  private:

@@ -1,9 +1,11 @@
 // 3-RPR criterion fields ([Briot]): reactions and pressure angles per leg from
-// the platform twists, and the assembly-mode constraint (docs/theory/three_dof.md).
+// the platform twists, the velocity ratio and condition number of the
+// homogenised Jacobian dq/dx, and the assembly-mode constraint (docs/theory/three_dof.md).
 #include "mechanisms/three_rpr/criteria.hpp"
 
 #include <type_traits>
 
+#include "criteria/singular3.hpp"
 #include "criteria/support.hpp"
 
 namespace pkmws::criteria {
@@ -23,8 +25,10 @@ struct ThreeRprTwist {
   bool revolute = true;
   int leg = 0;
   // Which quantity: 0 = R_i,max, 1 = |v_B_i|², 2 = -det_sign det A' (<= 0 in
-  // the assembly mode of the reference point: no type-2 singularity crossed).
+  // the assembly mode of the reference point: no type-2 singularity crossed),
+  // 3 = σ_max² of dq/dx', 4 = -σ_min² / σ_max² of dq/dx' (x' = (x, y, L φ)).
   int what = 0;
+  double length = 1.0;  // L of x'
   double det_sign = 1.0;
   // what == 0 over boxes: only the assembly mode det_sign det > 0 counts (the
   // field comes with that mode's constraint, three_rpr_assembly_mode).
@@ -72,7 +76,35 @@ struct ThreeRprTwist {
     p.rho2 = rho2[i];
     return p;
   }
+  // p(μ) = det(μ I - MᵀM) for M = dq/dx' at P: row j of dq/dx is a_j / ρ_j²
+  // (leg angle: dq_j = (J d_j) . dB_j / ρ_j²) or a_j / ρ_j (leg length:
+  // dρ_j = d_j . dB_j / ρ_j), dB_j = dP + dφ J c_j, i.e. [Briot]'s A' rows
+  // divided by the diagonal B (ρ_j or 1), as ThreeRpr::evaluate's B⁻¹A;
+  // x' = (x, y, L φ) divides the third column by L (criteria/singular3.hpp).
+  template <class T> detail::Cubic<T> jacobian_cubic(const T& x, const T& y) const {
+    T a[3][3], w[3];
+    for (std::size_t j = 0; j < 3; ++j) {
+      const T dx = x - e[j].x, dy = y - e[j].y;
+      T nx = dx, ny = dy;
+      if (revolute) {
+        nx = -dy;
+        ny = dx;
+      }
+      a[j][0] = nx;
+      a[j][1] = ny;
+      a[j][2] = (c[j].x * ny - c[j].y * nx) / length;
+      const T rho2 = certified::sqr(dx) + certified::sqr(dy);
+      w[j] = revolute ? rho2 * rho2 : rho2;
+    }
+    return detail::gram_invariants(a, w);
+  }
   template <class T> T eval(const T& x, const T& y) const {
+    if (what >= 3) {
+      const auto cubic = [this](const auto& u, const auto& v) { return jacobian_cubic(u, v); };
+      const auto [l1, l3] = detail::cubic_roots_field(cubic, x, y, what == 4);
+      if (what == 3) return l1;
+      return -(l3 / l1);
+    }
     using certified::sqr;
     using certified::sqrt;
     using std::abs;
@@ -100,6 +132,16 @@ struct ThreeRprTwist {
   }
   CellState domain(const Box& b) const {
     if (what == 2) return CellState::inside;  // a polynomial
+    if (what >= 3) {
+      // No leg of zero length; the roots used are simple (λ_1 > λ_2, and λ_3 < λ_2 for κ).
+      for (const Point& ej : e) {
+        if (dist2(b, ej).lo <= 0.0) return CellState::undecided;
+      }
+      const auto cubic = [this](const auto& u, const auto& v) { return jacobian_cubic(u, v); };
+      const Interval x(b.min.x, b.max.x), y(b.min.y, b.max.y);
+      const bool simple = detail::simple_roots_over_box(cubic, x, y, what == 4);
+      return simple ? CellState::inside : CellState::undecided;
+    }
     const Parts<Interval> p = parts(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y));
     if (assembly_only && (det_sign * p.det).hi <= 0.0) return CellState::outside;  // the other mode
     if (p.det.contains_zero() || p.rho2.lo <= 0.0) return CellState::undecided;
@@ -145,15 +187,6 @@ bool singular_everywhere(const ThreeRprTwist& t, const Box& box) {
   return true;
 }
 
-// ---------------------------------------------------------------------------
-// Biglide velocity ratio V_i / V_y = |∂q_i/∂y| ([Strutynskyi] fig. 8) for the
-// paper's branches b_1 = b_2 = -1 (eq. 5-8), docs/theory/biglide.md:
-//   h1 = y + B, w1 = sqrt(l3² - h1²), ∂q1/∂y = -b1 h1 / w1,
-//   ∂v/∂y = (b1 h1 / w1, 1), ∂J/∂y = (∂q1/∂y, 0) + M ∂v/∂y,
-//   J_y = -B - b1 w1 M10 + M11 h1, h2 = B - J_y, w2 = sqrt(l2² - h2²),
-//   ∂q2/∂y = ∂J_x/∂y + b2 h2 ∂J_y/∂y / w2,
-// M = (l1 / l3) R(γ) (identity for the simplified scheme). Surrogate:
-// s_i = (∂q_i/∂y)², level(t) = t².
 // The sign of det A' at the reference point (det is the same for every leg
 // index up to the cyclic order of the rows, i.e. identical).
 double reference_det_sign(const ThreeRprTwist& t, Point reference) {
@@ -198,6 +231,45 @@ CriterionField three_rpr_assembly_mode(const mechanisms::ThreeRpr& mechanism, Po
   return c;
 }
 
+double three_rpr_characteristic_length(const mechanisms::ThreeRpr& mechanism, const mechanisms::Criteria& criteria) {
+  return criteria.characteristic_length.value_or(mechanism.characteristic_length());
+}
+
+namespace {
+
+// σ_max² (velocity ratio, level t²) or -σ_min²/σ_max² (condition number: κ <= t
+// <=> σ_min²/σ_max² >= 1/t², level -1/t²) of dq/dx' with the file's L.
+CriterionField three_rpr_conditioning(const mechanisms::ThreeRpr& mechanism, const mechanisms::Criteria& criteria,
+                                      bool kappa) {
+  ThreeRprTwist impl(mechanism, 0, kappa ? 4 : 3, mechanisms::Load{});
+  impl.length = three_rpr_characteristic_length(mechanism, criteria);
+  CriterionField c;
+  c.name = kappa ? "condition_number" : "velocity_ratio";
+  c.unit = kappa ? "" : "|dq|/|dx'|";
+  c.key = kappa ? "three_rpr.kappa" : "three_rpr.vratio";
+  c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
+  if (kappa) {
+    c.threshold_min = 1.0;
+    c.level = [](double t) { return t >= 1.0 ? -1.0 / (t * t) : -std::numeric_limits<double>::infinity(); };
+  } else {
+    c.level = [](double t) { return t * t; };
+  }
+  // The criterion as pkmws eval gives it (with the same L).
+  const mechanisms::ThreeRpr* m = &mechanism;
+  mechanisms::Criteria with_length;
+  with_length.characteristic_length = impl.length;
+  c.value = [m, with_length, kappa](Point p) {
+    const auto e = m->evaluate({p.x, p.y, m->orientation()}, with_length);
+    if (e.empty()) return nan;
+    if (kappa) return e.front().condition_number;
+    return e.front().velocity_ratio ? *e.front().velocity_ratio : nan;
+  };
+  c.within_test = [impl](const Box& b) { return impl.within(b); };
+  return c;
+}
+
+}  // namespace
+
 CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, int leg) {
   if (leg < 0 || leg > 2) throw std::invalid_argument("three_rpr_pressure_angle: leg must be 0, 1 or 2");
   const ThreeRprTwist impl(mechanism, leg, 1, mechanisms::Load{});
@@ -222,6 +294,14 @@ CriterionField three_rpr_pressure_angle(const mechanisms::ThreeRpr& mechanism, i
 }
 
 
+CriterionField three_rpr_velocity_ratio(const mechanisms::ThreeRpr& mechanism, const mechanisms::Criteria& criteria) {
+  return three_rpr_conditioning(mechanism, criteria, false);
+}
+
+CriterionField three_rpr_condition_number(const mechanisms::ThreeRpr& mechanism, const mechanisms::Criteria& criteria) {
+  return three_rpr_conditioning(mechanism, criteria, true);
+}
+
 namespace {
 
 // Capability criteria::CriterionFields of the 3-RPR at its file orientation.
@@ -231,9 +311,6 @@ class ThreeRprFields final : public CriterionFields {
   std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& criteria,
                                      const std::vector<int>& reaction_legs) const override {
     const mechanisms::ThreeRpr& rpr = *m_;
-    if (name == "velocity_ratio") {
-      throw std::invalid_argument("velocity-ratio level sets are implemented for the biglide ([Strutynskyi]), not three_rpr");
-    }
     if (!rpr.leg_limits() && !rpr.analysis_window()) {
       throw std::invalid_argument("three_rpr level sets need leg_limits or an analysis_window");
     }
@@ -242,6 +319,10 @@ class ThreeRprFields final : public CriterionFields {
     std::vector<int> legs = reaction_legs;
     if (legs.empty()) legs = {1, 2, 3};
     std::vector<CriterionField> out;
+    // One field for the whole Jacobian; the others one per limited leg.
+    if (name == "velocity_ratio") out.push_back(three_rpr_velocity_ratio(rpr, criteria));
+    if (name == "condition_number") out.push_back(three_rpr_condition_number(rpr, criteria));
+    if (!out.empty()) legs.clear();
     for (int leg : legs) {
       if (name == "reaction") {
         if (!criteria.load) throw std::invalid_argument("the reaction criterion needs criteria.load");
@@ -256,6 +337,7 @@ class ThreeRprFields final : public CriterionFields {
       // Reactions and pressure angles are infinite at every position: every
       // sub-level set is empty, known without refining anything.
       for (auto& f : out) {
+        if (f.name == "velocity_ratio") continue;  // dq/dx' stays finite (σ_min = 0 there)
         f.nowhere = "the 3-RPR is type-2 singular at every position at this orientation (cos phi = R_p / R_b): " +
                     f.name + " is infinite everywhere";
       }

@@ -463,6 +463,7 @@ std::vector<Evaluation> ThreeRpr::evaluate(const Pose& pose, const Criteria& cri
   const JointSolution s = inverse(pose).front();
   Evaluation e = detail::start_evaluation(s, 3);  // the 3-RPR's IK always gives three values
   const auto rho = leg_lengths(pose);
+  const double length = criteria.characteristic_length.value_or(characteristic_length_);
   const double scale = std::max(characteristic_length_, 1e-300);
   bool type1 = false;
   for (double r : rho) type1 = type1 || !(r > singular_tol * scale);
@@ -478,10 +479,11 @@ std::vector<Evaluation> ThreeRpr::evaluate(const Pose& pose, const Criteria& cri
     const Eigen::Matrix3d jq = j.B.inverse() * j.A;  // dq/dx, x = (x, y, phi)
     e.jacobian_det = jq.determinant();
     Eigen::Matrix3d scaled = jq;
-    scaled.col(2) /= scale;  // x' = (x, y, L phi)
+    scaled.col(2) /= length;  // x' = (x, y, L phi)
     const Eigen::JacobiSVD<Eigen::Matrix3d> svd(scaled);
     const auto sv = svd.singularValues();
     e.condition_number = type2 || sv(2) == 0.0 ? inf : sv(0) / sv(2);
+    e.velocity_ratio = sv(0);  // |dq| / |dx'| in the worst direction
   }
   for (double a : t.pressure_angle) e.pressure_angle_deg.push_back(a * rad2deg);
   if (criteria.load) {
@@ -496,6 +498,7 @@ std::vector<Evaluation> ThreeRpr::evaluate(const Pose& pose, const Criteria& cri
     }
   }
   e.extra.push_back({"transmission_det", t.determinant});
+  e.extra.push_back({"characteristic_length", length});
   for (std::size_t i = 0; i < 3; ++i) e.extra.push_back({"leg_length" + std::to_string(i + 1), rho[i]});
   return {e};
 }

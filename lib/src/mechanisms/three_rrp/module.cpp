@@ -1,9 +1,11 @@
-// The 3-RRP / 3-PRP module's capabilities: constant-orientation slices and the
-// paper's eliminant next to the closed form ([Mitsi] eq. 9-18).
+// The 3-RRP / 3-PRP module's capabilities: constant-orientation slices, the
+// paper's eliminant next to the closed form ([Mitsi] eq. 9-18), and criterion
+// fields (criteria.cpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "mechanisms/three_rrp/criteria.hpp"
 #include "mechanisms/three_rrp/three_rrp.hpp"
 
 namespace pkmws::mechanisms {
@@ -11,6 +13,7 @@ namespace pkmws::mechanisms {
 Offer ThreeRrp::provide(std::type_index which) const {
   if (Offer::asks<PoseSlice>(which)) return Offer::of<PoseSlice>(this);
   if (Offer::asks<Elimination>(which)) return Offer::of<Elimination>(this);
+  if (Offer::asks<criteria::CriterionFields>(which)) return Offer::owned(criteria::three_rrp_fields(*this));
   return Mechanism::provide(which);
 }
 

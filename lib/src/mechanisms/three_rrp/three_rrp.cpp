@@ -243,7 +243,7 @@ std::vector<PoseSolution> ThreeRrp::direct(std::span<const double> joints) const
 
 std::vector<Evaluation> ThreeRrp::evaluate(const Pose& pose, const Criteria& criteria) const {
   std::vector<Evaluation> out;
-  const double length = characteristic_length_;
+  const double length = criteria.characteristic_length.value_or(characteristic_length_);
   for (const JointSolution& s : inverse(pose)) {
     Evaluation e = detail::start_evaluation(s, 3);
     if (s.joints.size() != 3) {
@@ -274,6 +274,7 @@ std::vector<Evaluation> ThreeRrp::evaluate(const Pose& pose, const Criteria& cri
       const Eigen::JacobiSVD<Eigen::Matrix3d> svd(scaled);
       const auto sv = svd.singularValues();
       e.condition_number = type2 || sv(2) == 0.0 ? inf : sv(0) / sv(2);
+      e.velocity_ratio = sv(0);  // |dq| / |dx'| in the worst direction
     }
     for (double a : t.pressure_angle) e.pressure_angle_deg.push_back(a * rad2deg);
     if (criteria.load) {

@@ -1,0 +1,303 @@
+// The singular values of a 3x3 Jacobian as fields (private; included by the
+// modules' criteria.cpp only). Written for the three-actuator platforms at a
+// fixed orientation, whose dq/dx' (x' = (x, y, L phi), L the characteristic
+// length) has rows rational in the platform point.
+//
+// The squared singular values λ_1 >= λ_2 >= λ_3 >= 0 of M are the roots of
+//   p(μ) = det(μ I - MᵀM) = μ³ - c_2 μ² + c_1 μ - c_0,
+//   c_2 = |M|_F², c_1 = Σ (2x2 minors of M)² (Cauchy-Binet), c_0 = det(M)²,
+// polynomials in the entries of M. The largest and the smallest root are
+// evaluated for every arithmetic of certified/template_field.hpp:
+//  * double: the trigonometric form of the cubic's roots, polished by Newton;
+//  * Interval (over a box, the coefficients enclosing their values there): a
+//    root is enclosed by sign tests of p with interval coefficients at two
+//    points (p(U) > 0, p'(U) > 0, p''(U) > 0 puts every root below U; p(L) < 0
+//    puts a root above L; mirrored for the smallest root), widening around the
+//    centre's root, with λ_1 ∈ [c_2 / 3, c_2] and λ_3 ∈ [0, c_2 / 3] as the
+//    fallback (true for every positive semi-definite matrix);
+//  * jets and gradients: implicit differentiation of p(λ(x, y); x, y) = 0,
+//    λ_x = -p_x / p_μ, λ_xx = -(p_xx + 2 p_μx λ_x + p_μμ λ_x²) / p_μ, ...
+//    With λ and the coefficients' jets enclosed over a box, these formulas
+//    enclose the derivatives over the box (each is the formula at the true
+//    values, which lie in the enclosures). They need a simple root, p_μ ≠ 0:
+//    `simple_roots` checks it over a box (the fields' smooth domain).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+
+#include "pkmws/certified/interval.hpp"
+
+namespace pkmws::criteria::detail {
+
+// Coefficients of p(μ) = μ³ - c2 μ² + c1 μ - c0.
+template <class T> struct Cubic {
+  T c2, c1, c0;
+};
+
+// The invariants of MᵀM for M with rows m_j = a_j / sqrt(w_j) (w_j > 0: the
+// rows' weights, e.g. ρ_j⁴ for a leg angle), without square roots:
+//   c_2 = Σ |a_j|² / w_j, c_1 = Σ_{i<j} |a_i x a_j|² / (w_i w_j), c_0 = det(A)² / (w_0 w_1 w_2).
+template <class T> Cubic<T> gram_invariants(const T (&a)[3][3], const T (&w)[3]) {
+  using certified::sqr;
+  T c2 = (sqr(a[0][0]) + sqr(a[0][1]) + sqr(a[0][2])) / w[0];
+  for (int j = 1; j < 3; ++j) c2 = c2 + (sqr(a[j][0]) + sqr(a[j][1]) + sqr(a[j][2])) / w[j];
+  T c1 = T(0.0);
+  T cof[3];  // a_1 x a_2: the cofactors of row 0
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i + 1; j < 3; ++j) {
+      const T w0 = a[i][1] * a[j][2] - a[i][2] * a[j][1];
+      const T w1 = a[i][2] * a[j][0] - a[i][0] * a[j][2];
+      const T w2 = a[i][0] * a[j][1] - a[i][1] * a[j][0];
+      c1 = c1 + (sqr(w0) + sqr(w1) + sqr(w2)) / (w[i] * w[j]);
+      if (i == 1) {
+        cof[0] = w0;
+        cof[1] = w1;
+        cof[2] = w2;
+      }
+    }
+  }
+  const T det = a[0][0] * cof[0] + a[0][1] * cof[1] + a[0][2] * cof[2];
+  return {c2, c1, sqr(det) / ((w[0] * w[1]) * w[2])};
+}
+
+enum class Root { largest, smallest };
+
+template <class S> S cubic_value(const Cubic<S>& c, const S& mu) { return ((mu - c.c2) * mu + c.c1) * mu - c.c0; }
+template <class S> S cubic_slope(const Cubic<S>& c, const S& mu) { return (3.0 * mu - 2.0 * c.c2) * mu + c.c1; }
+template <class S> S cubic_curvature(const Cubic<S>& c, const S& mu) { return 6.0 * mu - 2.0 * c.c2; }
+
+// The root in double: trigonometric form of the depressed cubic (three real
+// roots: p is the characteristic polynomial of a symmetric matrix), then Newton.
+inline double cubic_root(Root which, const Cubic<double>& c) {
+  const double a = c.c2 / 3.0;
+  const double p = c.c1 - c.c2 * a;                                 // <= 0
+  const double q = ((-2.0 / 27.0) * c.c2 * c.c2 + c.c1 / 3.0) * c.c2 - c.c0;  // p(a)
+  double r = a;
+  if (p < 0.0) {
+    const double m = 2.0 * std::sqrt(-p / 3.0);
+    const double arg = std::clamp(3.0 * q / (p * m), -1.0, 1.0);
+    const double theta = std::acos(arg) / 3.0;  // ν_k = m cos(θ - 2πk/3); ν(θ) largest, ν(θ - 2π/3)... smallest
+    r = which == Root::largest ? a + m * std::cos(theta) : a + m * std::cos(theta + 2.0 * std::numbers::pi / 3.0);
+  }
+  if (which == Root::smallest) {
+    r = std::max(r, 0.0);
+  }
+  for (int it = 0; it < 3; ++it) {  // polish (the trigonometric form loses digits of a small root)
+    const double d = cubic_slope(c, r);
+    if (!(d > 0.0)) break;
+    const double step = cubic_value(c, r) / d;
+    if (!std::isfinite(step)) break;
+    r -= step;
+  }
+  return which == Root::smallest ? std::max(r, 0.0) : r;
+}
+
+// The root over a box: every root of every p with coefficients in `c`.
+inline certified::Interval cubic_root(Root which, const Cubic<certified::Interval>& c) {
+  using certified::Interval;
+  const double top = c.c2.hi;
+  const Interval fallback = which == Root::largest ? Interval(std::max(0.0, c.c2.lo / 3.0), top)
+                                                   : Interval(0.0, std::max(0.0, top / 3.0));
+  if (!c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return Interval(0.0, Interval::inf);
+  const Cubic<double> mid{c.c2.mid(), c.c1.mid(), c.c0.mid()};
+  const double r = cubic_root(which, mid);
+  const double slope = std::abs(cubic_slope(mid, r));
+  // How far the coefficients' spread moves the root (first order), and a floor.
+  const double spread = 0.5 * (c.c2.width() * r * r + c.c1.width() * std::abs(r) + c.c0.width());
+  double delta = std::max(slope > 0.0 ? spread / slope : top, 1e-12 * std::max(top, 1e-300));
+  for (int attempt = 0; attempt < 12; ++attempt, delta *= 4.0) {
+    const Interval lo(r - delta), hi(r + delta);
+    bool ok = false;
+    if (which == Root::largest) {
+      // All roots below hi: p, p', p'' > 0 there (Taylor with the monic cube).
+      ok = cubic_value(c, hi).lo > 0.0 && cubic_slope(c, hi).lo > 0.0 && cubic_curvature(c, hi).lo > 0.0 &&
+           cubic_value(c, lo).hi < 0.0;  // and a root above lo
+    } else {
+      // No root below lo: p < 0, p' > 0, p'' < 0 there; a root below hi: p(hi) > 0.
+      const bool below = r - delta <= 0.0 || (cubic_value(c, lo).hi < 0.0 && cubic_slope(c, lo).lo > 0.0 &&
+                                               cubic_curvature(c, lo).hi < 0.0);
+      ok = below && cubic_value(c, hi).lo > 0.0;
+    }
+    if (ok) {
+      const Interval found(std::max(r - delta, 0.0), r + delta);
+      const Interval both = certified::intersect(found, fallback);
+      return both.lo <= both.hi ? both : found;
+    }
+  }
+  return fallback;
+}
+
+// λ over a box with its coefficients there, in second-order centred forms
+// (m the box's centre, d = B - m): each coefficient and its first derivatives
+//   c(B) ⊆ c(m) + ∇c(m)·d + ½ dᵀ H_c(B) d,   ∇c(B) ⊆ ∇c(m) + H_c(B) d,
+// a first enclosure Λ₀ of the root from them, then
+//   λ(B) ⊆ λ(m) + ∇λ(m)·d + ½ dᵀ H_λ(B) d
+// with ∇λ, H_λ by implicit differentiation (at m, and over B with Λ₀: Taylor's
+// theorem along the segment from m, valid when p_μ(Λ₀) excludes 0, i.e. λ is
+// smooth over the box). Naive interval arithmetic on the coefficients
+// (rational in P, many terms) loses their correlations; these forms are tight
+// to second order in the box size.
+template <class S>
+certified::Jet<S> root_jet(const Cubic<certified::Jet<S>>& c, const S& l, const Cubic<S>& v);
+
+struct BoxRoot {
+  certified::Interval largest, smallest;  // λ_1, λ_3 (smallest only when asked)
+  Cubic<certified::Interval> coefficients;
+  Cubic<certified::Interval> dx, dy;  // the coefficients' first derivatives over the box
+  const certified::Interval& operator[](Root which) const { return which == Root::largest ? largest : smallest; }
+};
+inline certified::Interval tighter(const certified::Interval& a, const certified::Interval& b) {
+  const certified::Interval both = certified::intersect(a, b);
+  return both.lo <= both.hi ? both : a;
+}
+// `cubic_of(u, v)`: the coefficients at (u, v) for u, v Interval, Grad<Interval>
+// or Jet<Interval>. A point (both widths 0) needs no centred form.
+template <class F>
+BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const certified::Interval& y, bool smallest) {
+  using certified::Interval;
+  using certified::sqr;
+  using J = certified::Jet<Interval>;
+  BoxRoot out;
+  if (x.width() == 0.0 && y.width() == 0.0) {
+    const Cubic<J> m = cubic_of(J::variable_x(x), J::variable_y(y));
+    out.coefficients = {m.c2.v, m.c1.v, m.c0.v};
+    out.dx = {m.c2.dx, m.c1.dx, m.c0.dx};
+    out.dy = {m.c2.dy, m.c1.dy, m.c0.dy};
+    out.largest = cubic_root(Root::largest, out.coefficients);
+    if (smallest) out.smallest = cubic_root(Root::smallest, out.coefficients);
+    return out;
+  }
+  const double xm = x.mid(), ym = y.mid();
+  const Interval dx = x - Interval(xm), dy = y - Interval(ym);
+  const Interval dx2 = sqr(dx), dxy = dx * dy, dy2 = sqr(dy);
+  const Cubic<J> m = cubic_of(J::variable_x(Interval(xm)), J::variable_y(Interval(ym)));
+  const Cubic<J> b = cubic_of(J::variable_x(x), J::variable_y(y));
+  const auto value = [&](const J& at_m, const J& over) {
+    return tighter(over.v, at_m.v + at_m.dx * dx + at_m.dy * dy +
+                               0.5 * (over.dxx * dx2 + 2.0 * over.dxy * dxy + over.dyy * dy2));
+  };
+  const auto slope_x = [&](const J& at_m, const J& over) {
+    return tighter(over.dx, at_m.dx + over.dxx * dx + over.dxy * dy);
+  };
+  const auto slope_y = [&](const J& at_m, const J& over) {
+    return tighter(over.dy, at_m.dy + over.dxy * dx + over.dyy * dy);
+  };
+  out.coefficients = {value(m.c2, b.c2), value(m.c1, b.c1), value(m.c0, b.c0)};
+  out.dx = {slope_x(m.c2, b.c2), slope_x(m.c1, b.c1), slope_x(m.c0, b.c0)};
+  out.dy = {slope_y(m.c2, b.c2), slope_y(m.c1, b.c1), slope_y(m.c0, b.c0)};
+  const Cubic<Interval> vm{m.c2.v, m.c1.v, m.c0.v};
+  Cubic<J> bt = b;
+  for (auto [c, v, gx, gy] : {std::tuple{&bt.c2, out.coefficients.c2, out.dx.c2, out.dy.c2},
+                              std::tuple{&bt.c1, out.coefficients.c1, out.dx.c1, out.dy.c1},
+                              std::tuple{&bt.c0, out.coefficients.c0, out.dx.c0, out.dy.c0}}) {
+    c->v = v;
+    c->dx = gx;
+    c->dy = gy;
+  }
+  const auto root = [&](Root which) {
+    const Interval l0 = cubic_root(which, out.coefficients);
+    if (cubic_slope(out.coefficients, l0).contains_zero()) return l0;
+    // λ and its derivatives at m (thin coefficients), and its Hessian over B.
+    const J lm = root_jet(m, cubic_root(which, vm), vm);
+    const J lb = root_jet(bt, l0, out.coefficients);
+    return tighter(l0, lm.v + lm.dx * dx + lm.dy * dy + 0.5 * (lb.dxx * dx2 + 2.0 * lb.dxy * dxy + lb.dyy * dy2));
+  };
+  out.largest = root(Root::largest);
+  if (smallest) out.smallest = root(Root::smallest);
+  return out;
+}
+
+// Implicit differentiation (gradients), the root's value and the coefficients'
+// values given (root_over_box over a box; the point values at a point).
+template <class S>
+certified::Grad<S> root_jet(const Cubic<certified::Grad<S>>& c, const S& l, const Cubic<S>& v) {
+  const S pm = cubic_slope(v, l);
+  const S l2 = l * l;
+  const S px = (c.c1.dx * l - c.c2.dx * l2) - c.c0.dx;
+  const S py = (c.c1.dy * l - c.c2.dy * l2) - c.c0.dy;
+  return {l, -(px / pm), -(py / pm)};
+}
+
+// Implicit differentiation to second order (jets).
+template <class S>
+certified::Jet<S> root_jet(const Cubic<certified::Jet<S>>& c, const S& l, const Cubic<S>& v) {
+  const S l2 = l * l;
+  const S pm = cubic_slope(v, l);
+  const S pmm = cubic_curvature(v, l);
+  // p_x = -c2_x λ² + c1_x λ - c0_x, p_μx = -2 c2_x λ + c1_x, p_xx = -c2_xx λ² + c1_xx λ - c0_xx.
+  const S px = (c.c1.dx * l - c.c2.dx * l2) - c.c0.dx;
+  const S py = (c.c1.dy * l - c.c2.dy * l2) - c.c0.dy;
+  const S pmx = c.c1.dx - 2.0 * c.c2.dx * l;
+  const S pmy = c.c1.dy - 2.0 * c.c2.dy * l;
+  const S pxx = (c.c1.dxx * l - c.c2.dxx * l2) - c.c0.dxx;
+  const S pxy = (c.c1.dxy * l - c.c2.dxy * l2) - c.c0.dxy;
+  const S pyy = (c.c1.dyy * l - c.c2.dyy * l2) - c.c0.dyy;
+  const S lx = -(px / pm), ly = -(py / pm);
+  const S lxx = -((pxx + 2.0 * pmx * lx + pmm * lx * lx) / pm);
+  const S lxy = -((pxy + pmx * ly + pmy * lx + pmm * lx * ly) / pm);
+  const S lyy = -((pyy + 2.0 * pmy * ly + pmm * ly * ly) / pm);
+  return {l, lx, ly, lxx, lxy, lyy};
+}
+
+// The value part of an arithmetic (the point or the box).
+inline double value_part(double v) { return v; }
+inline certified::Interval value_part(const certified::Interval& v) { return v; }
+template <class S> S value_part(const certified::Grad<S>& v) { return v.v; }
+template <class S> S value_part(const certified::Jet<S>& v) { return v.v; }
+
+template <class T> Cubic<decltype(value_part(std::declval<T>()))> values(const Cubic<T>& c) {
+  return {value_part(c.c2), value_part(c.c1), value_part(c.c0)};
+}
+
+// The largest root λ_1 and (when `smallest`) the smallest λ_3 of the cubic
+// `cubic_of(x, y)` in arithmetic T (double, Interval, Grad<.>, Jet<.>): over a
+// box (interval arithmetics) by root_over_box, with derivatives by implicit
+// differentiation.
+template <class T, class F> std::pair<T, T> cubic_roots_field(const F& cubic_of, const T& x, const T& y, bool smallest) {
+  using S = decltype(value_part(std::declval<T>()));
+  std::pair<T, T> out{T(0.0), T(0.0)};
+  if constexpr (std::is_same_v<S, certified::Interval>) {
+    const BoxRoot b = root_over_box(cubic_of, value_part(x), value_part(y), smallest);
+    if constexpr (std::is_same_v<T, S>) {
+      out = {b.largest, b.smallest};
+    } else {
+      Cubic<T> c = cubic_of(x, y);
+      for (auto [mine, gx, gy] : {std::tuple{&c.c2, b.dx.c2, b.dy.c2}, std::tuple{&c.c1, b.dx.c1, b.dy.c1},
+                                  std::tuple{&c.c0, b.dx.c0, b.dy.c0}}) {
+        mine->dx = tighter(mine->dx, gx);
+        mine->dy = tighter(mine->dy, gy);
+      }
+      out.first = root_jet(c, b.largest, b.coefficients);
+      if (smallest) out.second = root_jet(c, b.smallest, b.coefficients);
+    }
+  } else {
+    const Cubic<T> c = cubic_of(x, y);
+    const Cubic<S> v = values(c);
+    const S l1 = cubic_root(Root::largest, v);
+    if constexpr (std::is_same_v<T, S>) {
+      out.first = l1;
+      if (smallest) out.second = cubic_root(Root::smallest, v);
+    } else {
+      out.first = root_jet(c, l1, v);
+      if (smallest) out.second = root_jet(c, cubic_root(Root::smallest, v), v);
+    }
+  }
+  return out;
+}
+
+// Whether the roots used are simple over a box, from the centred enclosures:
+// p_μ > 0 at λ_1 (λ_1 > λ_2) and λ_1 > 0, and with `smallest` at λ_3 (λ_3 < λ_2).
+template <class F>
+bool simple_roots_over_box(const F& cubic_of, const certified::Interval& x, const certified::Interval& y,
+                           bool smallest) {
+  const BoxRoot b = root_over_box(cubic_of, x, y, smallest);
+  return b.largest.lo > 0.0 && cubic_slope(b.coefficients, b.largest).lo > 0.0 &&
+         (!smallest || cubic_slope(b.coefficients, b.smallest).lo > 0.0);
+}
+
+}  // namespace pkmws::criteria::detail

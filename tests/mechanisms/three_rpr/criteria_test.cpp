@@ -1,0 +1,171 @@
+// 3-RPR velocity ratio and condition number at the file orientation: the
+// largest and smallest singular values of the homogenised dq/dx', x' = (x, y, L φ),
+// as fields (lib/src/criteria/singular3.hpp) against pkmws eval's SVD, their
+// jets and enclosures, the characteristic length, and certified areas against grids.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "pkmws/criteria/fields.hpp"
+#include "pkmws/io/mechanism_file.hpp"
+#include "criteria/singular3.hpp"
+#include "mechanisms/three_rpr/criteria.hpp"
+#include "support/field_checks.hpp"
+#include "support/fixtures.hpp"
+#include "support/load_error.hpp"
+
+namespace {
+
+using namespace pkmws;
+using geometry::Box;
+using geometry::Point;
+using pkmws::test::dataset;
+
+const mechanisms::ThreeRpr& rpr(const io::MechanismFile& f) { return dynamic_cast<const mechanisms::ThreeRpr&>(*f.model); }
+
+// eval's answer at P (the file orientation) with the characteristic length L.
+mechanisms::Evaluation evaluation(const io::MechanismFile& f, Point p, double length) {
+  mechanisms::Criteria c;
+  c.characteristic_length = length;
+  return f.model->evaluate({p.x, p.y, f.model->orientation()}, c).front();
+}
+
+double extra(const mechanisms::Evaluation& e, const std::string& key) {
+  for (const auto& [k, v] : e.extra) {
+    if (k == key) return v;
+  }
+  return std::nan("");
+}
+
+TEST(ThreeRprConditioning, CubicRootsAreTheSquaredSingularValues) {
+  // diag(3, 2, 0.5) rotated: λ = 9, 4, 0.25; the interval roots enclose them.
+  const double a[3][3] = {{3.0 * 0.6, 3.0 * -0.8, 0.0}, {2.0 * 0.8, 2.0 * 0.6, 0.0}, {0.0, 0.0, 0.5}};
+  const double w[3] = {1.0, 1.0, 1.0};
+  const auto c = criteria::detail::gram_invariants(a, w);
+  EXPECT_NEAR(criteria::detail::cubic_root(criteria::detail::Root::largest, c), 9.0, 1e-12);
+  EXPECT_NEAR(criteria::detail::cubic_root(criteria::detail::Root::smallest, c), 0.25, 1e-13);
+  const criteria::detail::Cubic<certified::Interval> ci{certified::Interval(c.c2 - 1e-3, c.c2 + 1e-3), c.c1, c.c0};
+  const auto l1 = criteria::detail::cubic_root(criteria::detail::Root::largest, ci);
+  const auto l3 = criteria::detail::cubic_root(criteria::detail::Root::smallest, ci);
+  EXPECT_TRUE(l1.contains(9.0) && l3.contains(0.25));
+  EXPECT_LT(l1.width(), 2e-2);
+  EXPECT_LT(l3.width(), 1e-3);
+  // A singular matrix: λ_3 = 0 exactly.
+  const double s[3][3] = {{1.0, 0.0, 0.0}, {0.0, 2.0, 0.0}, {1.0, 2.0, 0.0}};
+  EXPECT_EQ(criteria::detail::cubic_root(criteria::detail::Root::smallest, criteria::detail::gram_invariants(s, w)), 0.0);
+}
+
+TEST(ThreeRprConditioning, SurrogatesAgreeWithTheEvaluationsSvd) {
+  for (const char* name : {"three_rpr_paminsa_phi25_r200", "three_rpr_prismatic"}) {
+    const auto f = io::load_mechanism(dataset(name));
+    const auto& m = rpr(f);
+    const double length = criteria::three_rpr_characteristic_length(m, f.criteria);
+    EXPECT_DOUBLE_EQ(length, m.characteristic_length());
+    const auto vr = criteria::three_rpr_velocity_ratio(m, f.criteria);
+    const auto kappa = criteria::three_rpr_condition_number(m, f.criteria);
+    const Box box = m.bounds();
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<double> ux(box.min.x, box.max.x), uy(box.min.y, box.max.y);
+    int checked = 0;
+    for (int n = 0; n < 2000 && checked < 200; ++n) {
+      const Point p{ux(rng), uy(rng)};
+      const auto e = evaluation(f, p, length);
+      if (e.singular || !e.velocity_ratio || !(e.condition_number < 1e4)) continue;
+      EXPECT_DOUBLE_EQ(extra(e, "characteristic_length"), length);
+      const double s = *e.velocity_ratio, k = e.condition_number;
+      EXPECT_NEAR(vr.surrogate->value(p), s * s, 1e-9 * s * s) << name;
+      EXPECT_NEAR(kappa.surrogate->value(p), -1.0 / (k * k), 1e-9 / (k * k)) << name;
+      EXPECT_DOUBLE_EQ(vr.value(p), s);
+      EXPECT_DOUBLE_EQ(kappa.value(p), k);
+      test::expect_same_sublevel(kappa, p, k, {1.5, 3.0, 10.0});
+      test::expect_same_sublevel(vr, p, s, {0.5 * s + 0.1, 2.0 * s});
+      ++checked;
+    }
+    EXPECT_EQ(checked, 200) << name;
+  }
+}
+
+TEST(ThreeRprConditioning, JetsMatchFiniteDifferencesAndIntervalsEncloseOverRandomBoxes) {
+  const auto f = io::load_mechanism(dataset("three_rpr_paminsa_phi0_r200"));
+  const auto& m = rpr(f);
+  const auto vr = criteria::three_rpr_velocity_ratio(m, f.criteria);
+  const auto kappa = criteria::three_rpr_condition_number(m, f.criteria);
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-0.25, 0.25), size(1e-5, 2e-3);
+  int checked = 0;
+  for (int n = 0; n < 2000 && checked < 40; ++n) {
+    const Point p{u(rng), u(rng)};
+    const double h = size(rng);
+    const Box box{{p.x - h, p.y - h}, {p.x + h, p.y + h}};
+    if (kappa.surrogate->domain(box) != certified::CellState::inside) continue;
+    test::check_field(*vr.surrogate, p, 1e-5, box);
+    test::check_field(*kappa.surrogate, p, 1e-5, box);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 40);
+}
+
+TEST(ThreeRprConditioning, TheCharacteristicLengthComesFromTheFile) {
+  auto doc = nlohmann::json::parse(test::slurp(dataset("three_rpr_paminsa_phi0_r200")));
+  doc["criteria"] = {{"max_condition_number", 4.0}, {"characteristic_length", 0.25}};
+  const auto f = io::parse_mechanism(doc, "test");
+  ASSERT_EQ(f.criteria.characteristic_length, 0.25);
+  const auto& m = rpr(f);
+  EXPECT_DOUBLE_EQ(criteria::three_rpr_characteristic_length(m, f.criteria), 0.25);
+  const auto kappa = criteria::fields_for(f, "condition_number").front();
+  const Point p{0.05, -0.03};
+  const double k = evaluation(f, p, 0.25).condition_number;
+  EXPECT_DOUBLE_EQ(kappa.value(p), k);
+  EXPECT_NEAR(kappa.surrogate->value(p), -1.0 / (k * k), 1e-9);
+  // Another L gives another κ (the default is the platform's circumradius, 0.1 m).
+  EXPECT_GT(std::abs(evaluation(f, p, m.characteristic_length()).condition_number - k), 1e-3 * k);
+  // Bad values: one line naming the field.
+  for (const auto& bad : {nlohmann::json(-1.0), nlohmann::json(0.0), nlohmann::json("long")}) {
+    doc["criteria"]["characteristic_length"] = bad;
+    EXPECT_NE(test::load_error(doc).find("criteria.characteristic_length"), std::string::npos) << bad;
+  }
+  auto five_bar = nlohmann::json::parse(test::slurp(dataset("five_bar_dextar_pp")));
+  five_bar["criteria"] = {{"characteristic_length", 0.1}};
+  const std::string e = test::load_error(five_bar);
+  EXPECT_NE(e.find("criteria.characteristic_length"), std::string::npos) << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos);
+}
+
+// Certified bounds against a grid of eval's κ (and the assembly mode of the centre).
+void expect_bounds_contain_grid(const char* name, const std::string& criterion, double limit, double tolerance) {
+  const auto f = io::load_mechanism(dataset(name));
+  const auto& m = rpr(f);
+  const double length = criteria::three_rpr_characteristic_length(m, f.criteria);
+  certified::LevelSetOptions o;
+  o.relative_tolerance = tolerance;
+  const auto r = criteria::limited_workspace(f, {{criterion, limit}}, o);
+  ASSERT_GT(r.region.area_lower, 0.0) << name;
+  const Box box = m.bounds();
+  const double centre_det = extra(evaluation(f, {0.5 * (box.min.x + box.max.x), 0.5 * (box.min.y + box.max.y)}, length),
+                                  "transmission_det");
+  const int n = 700;
+  const double grid = test::grid_area(box, n, [&](Point p) {
+    const auto e = evaluation(f, p, length);
+    if (!e.reachable || !(extra(e, "transmission_det") * centre_det > 0.0)) return false;
+    const double v = criterion == "condition_number" ? e.condition_number : e.velocity_ratio.value_or(1e300);
+    return v <= limit;
+  });
+  // A midpoint grid on smooth level curves: within a few 1e-3 of the area.
+  EXPECT_NEAR(grid, 0.5 * (r.region.area_lower + r.region.area_upper), 3e-3 * grid) << name;
+  EXPECT_LT(r.region.width(), 2.0 * tolerance * r.region.area_upper) << name;
+}
+
+TEST(ThreeRprConditioning, CertifiedVelocityRatioAreaContainsAGridEstimate) {
+  expect_bounds_contain_grid("three_rpr_paminsa_phi0_r200", "velocity_ratio", 12.0, 1e-4);
+}
+
+// ~40 s: PKMWS_HEAVY_GTESTS.
+TEST(ThreeRprConditioning, CertifiedConditionNumberAreaContainsAGridEstimate) {
+  expect_bounds_contain_grid("three_rpr_paminsa_phi0_kappa4", "condition_number", 4.0, 1e-6);
+}
+
+}  // namespace
