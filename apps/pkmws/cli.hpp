@@ -100,7 +100,7 @@ double elapsed_ms(std::chrono::steady_clock::time_point start);
 void print_json(const Json& j);
 /// Parses a number argument ("X", "Q1", ...) in decimal notation (no spaces,
 /// hexadecimal, inf or nan) or throws io::InputError naming `what`.
-double parse_number(const std::string& text, const std::string& what);
+using report::parse_number;
 /// Largest magnitudes of positions / lengths (the file format's limit) and of
 /// angles in degrees accepted on the command line: beyond them the double
 /// arithmetic of the kinematics gives nothing meaningful (1e308 overflows).
