@@ -80,8 +80,6 @@ void add_max_time_option(CLI::App* sub, double& seconds);
 
 /// The thresholds of `--levels a,b,c`: decimal numbers, increasing (levels.cpp).
 std::vector<double> parse_levels(const std::string& text);
-/// Writes the curve charts of a 1-DOF file into `dir`; returns the file names.
-std::vector<std::string> write_curve_figures(const io::MechanismFile& mech, const std::string& dir);
 
 /// Checks, before any work, that every non-empty path can be written: a file
 /// name in an existing, writable directory, not a directory itself, no path
