@@ -9,20 +9,12 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "pkmws/certified/level_set.hpp"
 #include "pkmws/geometry/region.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "pkmws/report/common.hpp"
 
-namespace pkmws::criteria {
-struct LimitedWorkspace;  // pkmws/criteria/fields.hpp
-}
-
 namespace pkmws::cli {
-
-using Json = nlohmann::json;
 
 /// Each subcommand registers itself and sets `run` when it is selected.
 struct Command {
@@ -94,8 +86,6 @@ void write_outputs(const std::vector<std::pair<std::string, std::string>>& files
 
 /// Milliseconds since `start`.
 double elapsed_ms(std::chrono::steady_clock::time_point start);
-/// Prints JSON (indented) to stdout.
-void print_json(const Json& j);
 /// Parses a number argument ("X", "Q1", ...) in decimal notation (no spaces,
 /// hexadecimal, inf or nan) or throws io::InputError naming `what`.
 using report::parse_number;

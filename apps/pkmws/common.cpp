@@ -21,8 +21,6 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-void print_json(const Json& j) { std::cout << report::json_with_null_reasons(j.dump()) << "\n"; }
-
 double parse_length(const std::string& text, const std::string& what) {
   const double v = parse_number(text, what);
   if (!(std::abs(v) <= max_argument_length)) {
