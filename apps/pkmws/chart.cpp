@@ -14,7 +14,7 @@ void add_chart(CLI::App& app, std::vector<Command>& commands) {
   auto* sub = app.add_subcommand("chart", "Metrics of one-parameter sweeps: line-chart panels and Markdown tables");
   struct Args {
     report::ChartOptions options;
-    std::string out, markdown;
+    bool json = false;
   };
   auto a = std::make_shared<Args>();
   report::ChartOptions& o = a->options;
@@ -27,8 +27,8 @@ void add_chart(CLI::App& app, std::vector<Command>& commands) {
       ->required()
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  sub->add_option("-o,--out", a->out, "Output SVG: one panel per --y");
-  sub->add_option("--markdown", a->markdown, "Output Markdown: one table per --y (rows: files, columns: x values)");
+  sub->add_option("-o,--out", o.output, "Output SVG: one panel per --y");
+  sub->add_option("--markdown", o.markdown_output, "Output Markdown: one table per --y (rows: files, columns: x values)");
   sub->add_option("--title", o.title, "Figure title");
   sub->add_option("--x-label", o.x_label, "Horizontal axis title with unit (default: the column name)");
   sub->add_option("--y-label", o.y_labels, "Title with unit of each --y, in order (default: the column name)")
@@ -37,20 +37,23 @@ void add_chart(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("--mark", o.marks, "x values to highlight, comma-separated (guides in the figure, bold in tables)");
   sub->add_option("--mark-label", o.marks_label, "Legend text of the highlighted x values");
   sub->add_option("--caption", o.caption, "Caption under the figure");
+  sub->add_flag("--json", a->json, "Print one JSON object: the sweeps read and the files written "
+                                   "(docs/schema/chart.output.schema.json)");
   commands.push_back({sub, [a] {
-    if (a->out.empty() && a->markdown.empty()) throw io::InputError("chart: give -o FIG.svg, --markdown TABLE.md or both");
-    if (!a->options.y_labels.empty() && a->options.y_labels.size() != a->options.ys.size()) {
-      throw io::InputError("--y-label: give one per --y (" + std::to_string(a->options.ys.size()) + ")");
+    const report::ChartOptions& opts = a->options;
+    if (opts.output.empty() && opts.markdown_output.empty()) {
+      throw io::InputError("chart: give -o FIG.svg, --markdown TABLE.md or both");
     }
-    check_outputs({a->out, a->markdown});
-    a->options.figure = !a->out.empty();
-    a->options.markdown = !a->markdown.empty();
-    const report::ChartReport r = report::chart(a->options);
+    if (!opts.y_labels.empty() && opts.y_labels.size() != opts.ys.size()) {
+      throw io::InputError("--y-label: give one per --y (" + std::to_string(opts.ys.size()) + ")");
+    }
+    check_outputs({opts.output, opts.markdown_output});
+    const report::ChartReport r = report::chart(opts);
     std::vector<std::pair<std::string, std::string>> files;
-    if (!a->out.empty()) files.emplace_back(a->out, r.svg);
-    if (!a->markdown.empty()) files.emplace_back(a->markdown, r.markdown);
+    if (!opts.output.empty()) files.emplace_back(opts.output, r.svg);
+    if (!opts.markdown_output.empty()) files.emplace_back(opts.markdown_output, r.markdown);
     write_outputs(files);
-    for (const auto& [path, _] : files) std::cout << path << "\n";
+    std::cout << (a->json ? report::to_json_text(r) + "\n" : report::to_text(r));
     return 0;
   }});
 }

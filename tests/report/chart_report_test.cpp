@@ -1,7 +1,10 @@
 // The chart report (pkmws/report/chart.hpp) over two one-parameter sweeps
 // written here: the Markdown tables' cells (plain values, midpoint ± half-width
-// of bounds, marked columns in bold), the figure's panels, and the errors.
+// of bounds, marked columns in bold), the figure's panels, the JSON text parsed
+// back, and the errors.
 #include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
 
 #include "pkmws/core/error.hpp"
 #include "pkmws/report/chart.hpp"
@@ -33,6 +36,8 @@ TEST(ReportChart, TablesHoldValuesAndBoundsWithMarkedColumnsInBold) {
   o.ys = {"m"};
   o.y_labels = {"m (mm)"};
   o.marks = "2";
+  o.output = "c.svg";
+  o.markdown_output = "c.md";
   const report::ChartReport r = report::chart(o);
   EXPECT_EQ(r.markdown,
             "#### m (mm)\n\n"
@@ -42,8 +47,22 @@ TEST(ReportChart, TablesHoldValuesAndBoundsWithMarkedColumnsInBold) {
             "| bounds | 102 \u00b1 3 | **202 \u00b1 3** | \u2013 |\n");
   EXPECT_NE(r.svg.find("<svg"), std::string::npos);
   EXPECT_NE(r.svg.find("m (mm)"), std::string::npos);
-  o.figure = false;
-  EXPECT_TRUE(report::chart(o).svg.empty());
+  const auto j = test::parsed(report::to_json_text(r));
+  EXPECT_EQ(j["x"], "x");
+  EXPECT_EQ(j["metrics"], nlohmann::json::array({"m"}));
+  ASSERT_EQ(j["sweeps"].size(), 2u);
+  EXPECT_EQ(j["sweeps"][0]["label"], "P");
+  EXPECT_EQ(j["sweeps"][1]["label"], "bounds");  // the file's stem
+  EXPECT_EQ(j["sweeps"][1]["metrics"], nlohmann::json::array({"m"}));
+  EXPECT_EQ(j["figure"], "c.svg");
+  EXPECT_EQ(j["markdown"], "c.md");
+  EXPECT_EQ(report::to_text(r), "c.svg\nc.md\n");
+  o.output.clear();
+  const report::ChartReport tables = report::chart(o);
+  EXPECT_TRUE(tables.svg.empty());
+  const auto k = test::parsed(report::to_json_text(tables));
+  EXPECT_TRUE(k["figure"].is_null());
+  EXPECT_EQ(k["figure_reason"], "no -o FIG.svg given");
 }
 
 TEST(ReportChart, ErrorsNameTheOptionOrTheFile) {
@@ -61,6 +80,7 @@ TEST(ReportChart, ErrorsNameTheOptionOrTheFile) {
   o.csvs = {s.plain};
   o.x = "x";
   o.ys = {"nope"};
+  o.output = "c.svg";
   EXPECT_EQ(message(o), "--y: no file has values of 'nope' (or nope_lower/_upper)");
   o.ys = {"m"};
   o.y_labels = {"a", "b"};

@@ -16,8 +16,11 @@
 #include "pkmws/design/sweep.hpp"
 #include "pkmws/io/panel_chart.hpp"
 #include "pkmws/report/common.hpp"
+#include "report/json.hpp"
 
 namespace pkmws::report {
+
+using detail::Json;
 
 namespace {
 
@@ -133,6 +136,12 @@ ChartReport chart(const ChartOptions& a) {
   }
   std::vector<Sweep> sweeps;
   for (const auto& arg : a.csvs) sweeps.push_back(read_sweep(arg));
+  ChartReport r;
+  r.x = a.x;
+  r.metrics = a.ys;
+  r.output = a.output;
+  r.markdown_output = a.markdown_output;
+  for (const Sweep& s : sweeps) r.sweeps.push_back({s.path, s.label, {}});
   const std::string x_label = a.x_label.empty() ? a.x : a.x_label;
 
   io::PanelFigure fig;
@@ -152,6 +161,7 @@ ChartReport chart(const ChartOptions& a) {
     std::set<double> xs;
     for (const Sweep& s : sweeps) {
       if (auto v = values_of(s, a.x, y)) {
+        r.sweeps[static_cast<std::size_t>(&s - sweeps.data())].metrics.push_back(y);
         for (const auto& [xv, _] : v->at) xs.insert(xv);
         found.emplace_back(&s, std::move(*v));
       }
@@ -192,8 +202,7 @@ ChartReport chart(const ChartOptions& a) {
       md += "\n";
     }
   }
-  ChartReport r;
-  if (a.figure) {
+  if (!a.output.empty()) {
     io::style_by_group(fig);
     try {
       r.svg = io::panel_chart_svg(fig);
@@ -201,8 +210,32 @@ ChartReport chart(const ChartOptions& a) {
       throw io::InputError(std::string("chart: ") + e.what());
     }
   }
-  if (a.markdown) r.markdown = md;
+  if (!a.markdown_output.empty()) r.markdown = md;
   return r;
+}
+
+std::string to_json_text(const ChartReport& r) {
+  Json sweeps = Json::array();
+  for (const auto& s : r.sweeps) sweeps.push_back({{"csv", s.csv}, {"label", s.label}, {"metrics", s.metrics}});
+  Json j{{"x", r.x}, {"metrics", r.metrics}, {"sweeps", sweeps}};
+  const auto file = [&j](const char* key, const std::string& path, const char* option) {
+    if (path.empty()) {
+      j[key] = nullptr;
+      j[std::string(key) + "_reason"] = std::string("no ") + option + " given";
+    } else {
+      j[key] = path;
+    }
+  };
+  file("figure", r.output, "-o FIG.svg");
+  file("markdown", r.markdown_output, "--markdown TABLE.md");
+  return detail::json_text(std::move(j));
+}
+
+std::string to_text(const ChartReport& r) {
+  std::string t;
+  if (!r.output.empty()) t += r.output + "\n";
+  if (!r.markdown_output.empty()) t += r.markdown_output + "\n";
+  return t;
 }
 
 }  // namespace pkmws::report

@@ -21,12 +21,21 @@ struct ChartOptions {
   /// x values to highlight, comma-separated, and their legend text.
   std::string marks;
   std::string marks_label = "marked values";
-  /// Which outputs to draw: the SVG figure, the Markdown tables.
-  bool figure = true;
-  bool markdown = true;
+  /// The outputs' paths, named in the report (the caller writes them); "": not drawn.
+  std::string output;           // the SVG figure
+  std::string markdown_output;  // the Markdown tables
 };
 
 struct ChartReport {
+  /// Each sweep read: its path and label, and the metrics it has values of.
+  struct Sweep {
+    std::string csv, label;
+    std::vector<std::string> metrics;
+  };
+  std::string x;
+  std::vector<std::string> metrics;  // the --y columns, one panel / table each
+  std::vector<Sweep> sweeps;
+  std::string output, markdown_output;  // as asked ("": not drawn)
   std::string svg;       // the panels (when asked)
   std::string markdown;  // the tables (when asked)
 };
@@ -35,5 +44,11 @@ struct ChartReport {
 /// the option (--y-label count, --x / --y: no such column, --mark) or the file
 /// and line (a malformed row, a second design at one x).
 ChartReport chart(const ChartOptions& options);
+
+/// `pkmws chart --json` (indented, no trailing newline; docs/schema/chart.output.schema.json):
+/// the sweeps with their labels and metrics, and the files written.
+std::string to_json_text(const ChartReport& report);
+/// `pkmws chart` without --json: the files written, one per line.
+std::string to_text(const ChartReport& report);
 
 }  // namespace pkmws::report
