@@ -32,8 +32,9 @@ struct CompareReport {
   grid::CompareResult result;
 };
 
-/// The comparison for `file`. Throws InputError naming the file where the
-/// workspace or a sampler cannot be computed.
+/// The comparison for `file`. Throws InputError naming the file where a
+/// sampler cannot run; a mechanism without a planar workspace throws its own
+/// reason (as Mechanism::workspace() gives it).
 CompareReport compare(const io::MechanismFile& file, const CompareOptions& options = {});
 
 /// `pkmws compare --json` (indented, no trailing newline).
