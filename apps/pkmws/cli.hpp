@@ -9,20 +9,12 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "pkmws/certified/level_set.hpp"
 #include "pkmws/geometry/region.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "pkmws/report/common.hpp"
 
-namespace pkmws::criteria {
-struct LimitedWorkspace;  // pkmws/criteria/fields.hpp
-}
-
 namespace pkmws::cli {
-
-using Json = nlohmann::json;
 
 /// Each subcommand registers itself and sets `run` when it is selected.
 struct Command {
@@ -80,8 +72,6 @@ void add_max_time_option(CLI::App* sub, double& seconds);
 
 /// The thresholds of `--levels a,b,c`: decimal numbers, increasing (levels.cpp).
 std::vector<double> parse_levels(const std::string& text);
-/// Writes the curve charts of a 1-DOF file into `dir`; returns the file names.
-std::vector<std::string> write_curve_figures(const io::MechanismFile& mech, const std::string& dir);
 
 /// Checks, before any work, that every non-empty path can be written: a file
 /// name in an existing, writable directory, not a directory itself, no path
@@ -96,11 +86,9 @@ void write_outputs(const std::vector<std::pair<std::string, std::string>>& files
 
 /// Milliseconds since `start`.
 double elapsed_ms(std::chrono::steady_clock::time_point start);
-/// Prints JSON (indented) to stdout.
-void print_json(const Json& j);
 /// Parses a number argument ("X", "Q1", ...) in decimal notation (no spaces,
 /// hexadecimal, inf or nan) or throws io::InputError naming `what`.
-double parse_number(const std::string& text, const std::string& what);
+using report::parse_number;
 /// Largest magnitudes of positions / lengths (the file format's limit) and of
 /// angles in degrees accepted on the command line: beyond them the double
 /// arithmetic of the kinematics gives nothing meaningful (1e308 overflows).

@@ -21,51 +21,6 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-void print_json(const Json& j) { std::cout << report::json_with_null_reasons(j.dump()) << "\n"; }
-
-namespace {
-
-// Decimal notation only: an optional sign, digits with an optional point, an
-// optional exponent ("12", "-0.5", ".5", "1e-3"); no spaces, no hexadecimal,
-// no "inf"/"nan". std::nullopt with the reason otherwise.
-std::optional<double> strict_double(const std::string& text, std::string& problem) {
-  std::size_t i = 0;
-  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
-  std::size_t digits = 0;
-  while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i, ++digits;
-  if (i < text.size() && text[i] == '.') {
-    ++i;
-    while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i, ++digits;
-  }
-  if (digits > 0 && i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
-    std::size_t j = i + 1;
-    if (j < text.size() && (text[j] == '+' || text[j] == '-')) ++j;
-    const std::size_t exp_start = j;
-    while (j < text.size() && text[j] >= '0' && text[j] <= '9') ++j;
-    if (j > exp_start) i = j;
-  }
-  if (text.empty() || digits == 0 || i != text.size()) {
-    problem = "expected a decimal number, got \"" + text + "\"";
-    return std::nullopt;
-  }
-  // The syntax is checked: strtod reads exactly this (underflow gives 0 or a subnormal).
-  const double v = std::strtod(text.c_str(), nullptr);
-  if (!std::isfinite(v)) {
-    problem = "\"" + text + "\" is out of the range of a double";
-    return std::nullopt;
-  }
-  return v;
-}
-
-}  // namespace
-
-double parse_number(const std::string& text, const std::string& what) {
-  std::string problem;
-  const auto v = strict_double(text, problem);
-  if (!v) throw io::InputError(what + ": " + problem);
-  return *v;
-}
-
 double parse_length(const std::string& text, const std::string& what) {
   const double v = parse_number(text, what);
   if (!(std::abs(v) <= max_argument_length)) {
@@ -86,7 +41,7 @@ void strict_numeric_options(CLI::App& app) {
   const CLI::Validator decimal_number(
       [](std::string& text) {
         std::string problem;
-        return strict_double(text, problem) ? std::string() : problem;
+        return report::decimal_number(text, problem) ? std::string() : problem;
       },
       "", "decimal number");
   // CLI11 reads integers with strtoll(base 0): "0x10" would be 16 and "010" 8.

@@ -2,20 +2,22 @@
 // (docs/design_space.md). Rows are appended to OUT.csv.partial as designs
 // finish, so an interrupted sweep resumes (--resume) without repeating or
 // losing a design; OUT.csv is written at the end, ordered by design index.
+// The CSV read back, its JSON and the summary are the library's
+// (pkmws/report/sweep.hpp); the partial file, the shards, MPI and the progress
+// line are this command's.
 #include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
-#include <optional>
-#include <set>
-#include <sstream>
 
 #include "cli.hpp"
 #include "sweep_mpi.hpp"
 #include "pkmws/design/sweep.hpp"
 #include "pkmws/io/export.hpp"
+#include "pkmws/report/sweep.hpp"
 
 namespace pkmws::cli {
 
@@ -38,77 +40,6 @@ Shard parse_shard(const std::string& text) {
   Shard s{std::stoul(text.substr(0, slash)), std::stoul(text.substr(slash + 1))};
   if (s.count == 0 || s.index >= s.count) throw io::InputError("--shard: expected i/N with 0 <= i < N, got '" + text + "'");
   return s;
-}
-
-// Where a CSV's columns fall: parameters between `index` and `status`,
-// metrics after it, then optionally `time_ms`, then `reason`.
-struct Layout {
-  std::size_t parameters = 0, metrics = 0;
-  bool timing = false;
-};
-
-Layout layout_of(const std::string& header, const std::string& where) {
-  std::vector<std::string> cols;
-  std::stringstream ss(header);
-  for (std::string c; std::getline(ss, c, ',');) cols.push_back(c);
-  const auto status = std::find(cols.begin(), cols.end(), "status");
-  if (cols.size() < 3 || cols.front() != "index" || cols.back() != "reason" || status == cols.end()) {
-    throw io::InputError(where + ": not a pkmws sweep CSV (header " + header + ")");
-  }
-  Layout l;
-  l.parameters = static_cast<std::size_t>(status - cols.begin()) - 1;
-  l.timing = cols[cols.size() - 2] == "time_ms";
-  l.metrics = cols.size() - l.parameters - 3 - (l.timing ? 1 : 0);
-  return l;
-}
-
-// Reads the rows of a sweep CSV. A last line without its line break was cut
-// short by a kill: it is left out (and so evaluated again on --resume).
-std::vector<design::DesignRow> read_rows(const fs::path& path, std::string& header) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw io::InputError(path.string() + ": cannot open");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string text = ss.str();
-  if (!text.empty() && text.back() != '\n') text.erase(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1);
-  std::stringstream lines(text);
-  if (!std::getline(lines, header)) throw io::InputError(path.string() + ": empty file");
-  const Layout l = layout_of(header, path.string());
-  std::vector<design::DesignRow> rows;
-  std::size_t number = 1;
-  for (std::string line; std::getline(lines, line);) {
-    ++number;
-    if (line.empty()) continue;
-    auto row = design::parse_csv_line(line, l.parameters, l.metrics, l.timing);
-    if (!row) throw io::InputError(path.string() + ":" + std::to_string(number) + ": malformed row");
-    rows.push_back(std::move(*row));
-  }
-  return rows;
-}
-
-std::string format_rows(const std::string& header, const std::vector<design::DesignRow>& rows, bool timing) {
-  std::string out = header + "\n";
-  for (const auto& r : rows) out += design::csv_line(r, timing) + "\n";
-  return out;
-}
-
-Json rows_json(const design::SweepSpec& spec, const std::vector<design::DesignRow>& rows) {
-  const std::vector<std::string> cols = design::metric_columns(spec);
-  Json arr = Json::array();
-  for (const auto& r : rows) {
-    Json j;
-    j["index"] = r.index;
-    for (std::size_t k = 0; k < spec.parameters.size(); ++k) j[spec.parameters[k].name] = r.values[k];
-    j["status"] = r.status;
-    for (std::size_t k = 0; k < cols.size(); ++k) j[cols[k]] = r.metrics[k] ? Json(*r.metrics[k]) : Json(nullptr);
-    j["time_ms"] = r.time_ms;
-    j["reason"] = r.reason;
-    arr.push_back(j);
-  }
-  Json params = Json::array();
-  for (const auto& p : spec.parameters) params.push_back({{"name", p.name}, {"paths", p.paths}});
-  return Json{{"base", spec.base_file.string()}, {"parameters", params}, {"metrics", spec.metrics},
-              {"columns", cols}, {"rows", arr}};
 }
 
 // "\r120/1000 designs  35.2/s  ETA 25 s" on a terminal, at most 5 times a second.
@@ -168,23 +99,9 @@ void add_sweep(CLI::App& app, std::vector<Command>& commands) {
     if (!a->merge.empty()) {
       check_writable_dir(out);
       if (!a->spec.empty()) throw io::InputError("sweep: give SPEC or --merge, not both");
-      std::string header;
-      std::map<std::size_t, design::DesignRow> rows;
-      for (const std::string& part : a->merge) {
-        std::string h;
-        for (auto& r : read_rows(part, h)) {
-          if (!rows.emplace(r.index, r).second) {
-            throw io::InputError(part + ": design " + std::to_string(r.index) + " is in two shards");
-          }
-        }
-        if (header.empty()) header = h;
-        if (h != header) throw io::InputError(part + ": its columns differ from " + a->merge.front() + "'s");
-      }
-      std::vector<design::DesignRow> sorted;
-      for (auto& [i, r] : rows) sorted.push_back(std::move(r));
-      const Layout l = layout_of(header, a->merge.front());
-      io::write_file_atomic(out, format_rows(header, sorted, l.timing));
-      std::printf("merged %zu designs from %zu files into %s\n", sorted.size(), a->merge.size(), out.c_str());
+      const report::SweepCsv merged = report::merge_sweep_csvs(a->merge);
+      io::write_file_atomic(out, report::csv_text(merged));
+      std::cout << report::merge_text(merged, a->merge.size(), out.string());
       return 0;
     }
     if (a->spec.empty()) throw io::InputError("sweep: SPEC (a sweep file) or --merge is required");
@@ -207,9 +124,9 @@ void add_sweep(CLI::App& app, std::vector<Command>& commands) {
         throw io::InputError(partial.string() + " exists (an interrupted sweep): add --resume to continue it, "
                              "or delete it");
       }
-      std::string h;
-      for (auto& r : read_rows(partial, h)) finished.emplace(r.index, std::move(r));
-      if (h != header) throw io::InputError(partial.string() + ": written by a different sweep file");
+      report::SweepCsv done = report::read_sweep_csv(partial);
+      for (auto& r : done.rows) finished.emplace(r.index, std::move(r));
+      if (done.header != header) throw io::InputError(partial.string() + ": written by a different sweep file");
     }
     std::vector<std::size_t> todo;
     std::size_t in_shard = 0;
@@ -236,20 +153,18 @@ void add_sweep(CLI::App& app, std::vector<Command>& commands) {
       mpi.release(true);
       rows = mpi.size() > 1 ? mpi.run(spec, todo, done) : design::run_sweep(spec, todo, a->threads, done);
     }
-    const double seconds = elapsed_ms(start) / 1000.0;
+    report::SweepReport result;
+    result.spec = spec;
+    result.seconds = elapsed_ms(start) / 1000.0;
+    result.evaluated = todo.size();
+    result.output = out.string();
     for (auto& r : rows) finished.emplace(r.index, std::move(r));
-    std::vector<design::DesignRow> all;
-    for (auto& [i, r] : finished) all.push_back(std::move(r));
-    io::write_file_atomic(out, format_rows(design::csv_header(spec, !a->no_timing), all, !a->no_timing));
-    if (!a->json.empty()) io::write_file_atomic(a->json, rows_json(spec, all).dump(1) + "\n");
+    for (auto& [i, r] : finished) result.rows.push_back(std::move(r));
+    io::write_file_atomic(out, report::csv_text({design::csv_header(spec, !a->no_timing), result.rows, !a->no_timing}));
+    if (!a->json.empty()) io::write_file_atomic(a->json, report::rows_json_text(result));
     log.close();
     fs::remove(partial);
-    std::map<std::string, std::size_t> by_status;
-    for (const auto& r : all) ++by_status[r.status];
-    std::string counts;
-    for (const auto& [s, n] : by_status) counts += (counts.empty() ? "" : ", ") + std::to_string(n) + " " + s;
-    std::printf("%zu designs (%s) -> %s; %zu evaluated in %.3f s (%.1f designs/s)\n", all.size(), counts.c_str(),
-                out.c_str(), todo.size(), seconds, seconds > 0 ? static_cast<double>(todo.size()) / seconds : 0.0);
+    std::cout << report::to_text(result);
     return 0;
   }});
 }

@@ -548,16 +548,14 @@ py::tuple workspace_area_bounds(const PyMechanism& m) {
   return py::make_tuple(e.area_lower, e.area_upper);
 }
 
+// The criteria-limited workspace as `pkmws area` and `export` compute it (the report layer).
 criteria::LimitedWorkspace limited(const PyMechanism& m, double tolerance, bool regions, int threads) {
-  if (!(tolerance > 0.0 && tolerance < 1.0)) throw InputError("tolerance: must be in (0, 1)");
-  if (!m.file->criteria.any()) throw InputError(m.file->path + ": the file has no criteria limits");
-  const auto limits = criteria::file_limits(*m.file);
-  certified::LevelSetOptions o;
-  o.relative_tolerance = tolerance;
+  report::LimitedOptions o;
+  o.tolerance = tolerance;
   o.build_regions = regions;
   o.threads = threads;
   py::gil_scoped_release release;
-  return guarded(*m.file, [&] { return criteria::limited_workspace(*m.file, limits, o); });
+  return guarded(*m.file, [&] { return report::limited_workspace(*m.file, o); });
 }
 
 py::dict drawing(const PyMechanism& m, double x, double y, std::optional<double> phi) {

@@ -14,7 +14,7 @@ from conftest import DATASETS, SOURCE_DIR, run
 
 SCHEMA_DIR = SOURCE_DIR / "docs" / "schema"
 COMMANDS = ["ik", "dk", "eval", "info", "area", "levels", "explain", "export", "plot", "grid", "compare", "batch",
-            "atlas", "diff", "optimize", "feasible"]
+            "atlas", "diff", "optimize", "feasible", "chart"]
 VALIDATORS = {c: jsonschema.Draft7Validator(json.loads((SCHEMA_DIR / f"{c}.output.schema.json").read_text()))
               for c in COMMANDS}
 BOUND = "1"  # --max-time for certified work: the shape is checked, not the precision
@@ -165,6 +165,16 @@ def test_batch_and_atlas_json(tmp_path):
     csv.write_text("index,status,a,b,area\n0,ok,1,1,1.0\n1,ok,2,1,2.0\n2,ok,1,2,3.0\n3,error,2,2,\n")
     a = valid("atlas", csv, "--x", "a", "--y", "b", "--metric", "area", "-o", tmp_path / "atlas.svg")
     assert a["cells_without_value"] == 1 and (tmp_path / "atlas.svg").exists()
+
+
+def test_chart_json(tmp_path):
+    one = tmp_path / "one.csv"
+    one.write_text("index,x,status,area,area_lower,area_upper,reason\n0,1,ok,1.0,0.9,1.1,\n1,2,ok,2.0,1.9,2.1,\n")
+    j = valid("chart", f"{one}=first", "--x", "x", "--y", "area", "--y", "area_lower", "--markdown", tmp_path / "t.md")
+    assert j["sweeps"] == [{"csv": str(one), "label": "first", "metrics": ["area", "area_lower"]}]
+    assert j["figure"] is None and j["figure_reason"] and j["markdown"] == str(tmp_path / "t.md")
+    assert (tmp_path / "t.md").exists()
+    refused("chart", one, "--x", "x", "--y", "nope", "-o", tmp_path / "c.svg", says="--y")
 
 
 def test_diff_json(tmp_path):

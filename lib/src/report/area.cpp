@@ -62,15 +62,15 @@ void region_report(AreaReport& out, const geometry::Region& region, double min_a
 // For a file with `criteria` limits: certified area bounds of the limited
 // workspace (docs/theory/level_sets.md).
 void criteria_area_report(AreaReport& out, const io::MechanismFile& mech, const AreaOptions& options) {
-  const auto limits = criteria::file_limits(mech);
-  certified::LevelSetOptions o;
-  o.relative_tolerance = options.criteria_tolerance;
-  criteria::LimitedWorkspace lw = criteria::limited_workspace(mech, limits, options.budget.apply(o));
+  LimitedOptions o;
+  o.tolerance = options.criteria_tolerance;
+  o.budget = options.budget;
+  criteria::LimitedWorkspace lw = limited_workspace(mech, o);
   out.method = "certified";
   out.area = lw.region.area_estimate();
   out.area_lower = lw.region.area_lower;
   out.area_upper = lw.region.area_upper;
-  for (const auto& l : limits) out.criteria.push_back({l.name, l.threshold});
+  for (const auto& l : criteria::file_limits(mech)) out.criteria.push_back({l.name, l.threshold});
   if (lw.detail.stopped && options.budget.bound) out.stopped = options.budget.stopped_note;
   out.note = lw.note;
   out.enclosure = lw.region;
@@ -142,6 +142,16 @@ double inscribed_circle_precision(const geometry::Box& b) { return 1e-5 * std::m
 
 std::string pair_label(const std::string& a, const std::string& b, const std::string& kind) {
   return kind == "link_angle" ? a + " ∠ " + b : a + " / " + b;
+}
+
+criteria::LimitedWorkspace limited_workspace(const io::MechanismFile& file, const LimitedOptions& options) {
+  if (!(options.tolerance > 0.0 && options.tolerance < 1.0)) throw io::InputError("tolerance: must be in (0, 1)");
+  if (!file.criteria.any()) throw io::InputError(file.path + ": the file has no criteria limits");
+  certified::LevelSetOptions o;
+  o.relative_tolerance = options.tolerance;
+  o.build_regions = options.build_regions;
+  o.threads = options.threads;
+  return criteria::limited_workspace(file, criteria::file_limits(file), options.budget.apply(o));
 }
 
 bodies::RealWorkspace real_workspace(const io::MechanismFile& file, const geometry::Region& reachable, int depth) {

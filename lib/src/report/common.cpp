@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <vector>
@@ -71,6 +72,42 @@ mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Regi
     }
   }
   return {circle.center.x, circle.center.y, phi};
+}
+
+std::optional<double> decimal_number(const std::string& text, std::string& problem) {
+  std::size_t i = 0;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  std::size_t digits = 0;
+  while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i, ++digits;
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i, ++digits;
+  }
+  if (digits > 0 && i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    std::size_t j = i + 1;
+    if (j < text.size() && (text[j] == '+' || text[j] == '-')) ++j;
+    const std::size_t exp_start = j;
+    while (j < text.size() && text[j] >= '0' && text[j] <= '9') ++j;
+    if (j > exp_start) i = j;
+  }
+  if (text.empty() || digits == 0 || i != text.size()) {
+    problem = "expected a decimal number, got \"" + text + "\"";
+    return std::nullopt;
+  }
+  // The syntax is checked: strtod reads exactly this (underflow gives 0 or a subnormal).
+  const double v = std::strtod(text.c_str(), nullptr);
+  if (!std::isfinite(v)) {
+    problem = "\"" + text + "\" is out of the range of a double";
+    return std::nullopt;
+  }
+  return v;
+}
+
+double parse_number(const std::string& text, const std::string& what) {
+  std::string problem;
+  const auto v = decimal_number(text, problem);
+  if (!v) throw io::InputError(what + ": " + problem);
+  return *v;
 }
 
 }  // namespace pkmws::report

@@ -95,6 +95,21 @@ std::string to_json_text(const AreaReport& report);
 /// `pkmws area` without --json (lines ending in a newline).
 std::string to_text(const AreaReport& report);
 
+/// How a criteria-limited workspace is computed: the certified level sets'
+/// bound width relative to the area, whether their inner and outer regions are
+/// built (for figures and exports), threads (0: all), deadline and progress.
+struct LimitedOptions {
+  double tolerance = 1e-6;
+  bool build_regions = false;
+  int threads = 0;
+  Budget budget;
+};
+/// The workspace of a file with `criteria`, limited by them (docs/theory/level_sets.md):
+/// what `area` reports for such a file, `export` writes and the Python module's
+/// `limited_area` / `limited_workspace` give. Throws InputError for a tolerance
+/// outside (0, 1) ("tolerance: ...") and for a file without criteria limits.
+criteria::LimitedWorkspace limited_workspace(const io::MechanismFile& file, const LimitedOptions& options = {});
+
 /// The real workspace of a file with bodies: `reachable` minus the interference
 /// regions, certified with quadtree depth `depth`.
 bodies::RealWorkspace real_workspace(const io::MechanismFile& file, const geometry::Region& reachable, int depth);

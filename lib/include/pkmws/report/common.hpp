@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "pkmws/certified/level_set.hpp"
@@ -38,9 +39,6 @@ struct AreaBounds {
 };
 AreaBounds exact_area_bounds(double area);
 
-/// A pose inside `region` for drawing the mechanism: the largest component's
-/// centroid or the centre of its largest inscribed circle, or points around it,
-/// the first reachable and non-singular; the file's orientation (3-DOF).
 /// The contract of every JSON report applied to a JSON document (its text):
 /// no bare null — a null (or an array holding one) at `key` comes with
 /// `key`_reason, or lies in an object that has a `reason`; a null without one
@@ -48,6 +46,17 @@ AreaBounds exact_area_bounds(double area);
 /// reports are still assembled by the command line print through this).
 std::string json_with_null_reasons(const std::string& json_text);
 
+/// A pose inside `region` for drawing the mechanism: the largest component's
+/// centroid or the centre of its largest inscribed circle, or points around it,
+/// the first reachable and non-singular; the file's orientation (3-DOF).
 mechanisms::Pose sample_pose(const io::MechanismFile& file, const geometry::Region& region);
+
+/// A number in decimal notation only: an optional sign, digits with an
+/// optional point, an optional exponent ("12", "-0.5", ".5", "1e-3"); no
+/// spaces, hexadecimal, "inf" or "nan". std::nullopt with the reason in
+/// `problem` otherwise (as the command line reads every number).
+std::optional<double> decimal_number(const std::string& text, std::string& problem);
+/// decimal_number, or InputError "`what`: <the reason>".
+double parse_number(const std::string& text, const std::string& what);
 
 }  // namespace pkmws::report
