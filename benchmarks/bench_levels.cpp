@@ -1,16 +1,18 @@
 // Certified criteria-limited areas, every bundled dataset with `criteria`
-// (DexTAR pressure angles, PAMINSA reactions, the biglide's velocity ratio, the
-// MOMA's pressure angle and condition number):
+// (DexTAR pressure angles, PAMINSA reactions and condition number, the
+// biglide's velocity ratio and pressure angle, the MOMA's pressure angle and
+// condition number, the 3-PRP's pressure angle):
 //  - levels/1e-6/<stem>/threads:{1,2}: certified bounds at a relative width of
 //    1e-6 (the time is the benchmark's);
 //  - levels/1e-9/<stem>: the same at 1e-9, one thread, with a 10 s deadline
 //    (counter `stopped` = 1 when it was reached: the bounds are then wider);
 //  - side by side (threads:1 cases), a uniform grid of the same criteria (every
-//    field of the file's limits, with the 3-RPR's assembly-mode constraint, at
-//    cell centres, in C++): the first N (steps of √2 from 64, up to 4096 per
-//    side) whose area lands inside the certified bounds ("first hit") and its
-//    time (no hit: N = 0 and the time of the 4096² grid), and the N its error
-//    envelope (relative error x N) needs for 1e-6.
+//    surrogate field of the file's limits at its level, with the 3-RPR's
+//    assembly-mode constraint, at cell centres, in C++): the first N (steps
+//    of √2 from 64, up to 8192 per side) whose area lands inside the
+//    certified bounds ("first hit") and its time (no hit: N = 0 and the time
+//    of the 8192² grid), and the N its error envelope (relative error x N)
+//    needs for 1e-6.
 // benchmarks/level_sets.py turns the counters into the report's table.
 #include <benchmark/benchmark.h>
 
@@ -39,15 +41,16 @@ criteria::LimitedWorkspace certified_area(const io::MechanismFile& file, double 
   return criteria::limited_workspace(file, criteria::file_limits(file), o);
 }
 
-// The file's criteria as point tests: each field's value against its threshold
-// (the assembly-mode constraint against its level).
+// The file's criteria as point tests: every surrogate field at its level
+// (the same sets as the criteria, c <= t <=> s <= level(t); the assembly-mode
+// constraint at its own), in closed form like a numpy grid of the formulas.
 struct PointTest {
   std::vector<std::pair<criteria::CriterionField, double>> fields;
   const io::MechanismFile* file = nullptr;
   bool operator()(geometry::Point p) const {
     if (!file->model->reachable({p.x, p.y, file->model->orientation()})) return false;
-    for (const auto& [f, t] : fields) {
-      if (!(f.value(p) <= t)) return false;
+    for (const auto& [f, level] : fields) {
+      if (!(f.surrogate->value(p) <= level)) return false;
     }
     return true;
   }
@@ -58,8 +61,8 @@ PointTest point_test(const io::MechanismFile& file) {
   t.file = &file;
   for (const criteria::Limit& l : criteria::file_limits(file)) {
     for (criteria::CriterionField& f : criteria::fields_for(file, l.name)) {
-      const double threshold = f.name == "assembly_mode" ? f.level(0.0) : l.threshold;
-      t.fields.emplace_back(std::move(f), threshold);
+      const double level = f.level(f.name == "assembly_mode" ? 0.0 : l.threshold);
+      t.fields.emplace_back(std::move(f), level);
     }
   }
   return t;
@@ -92,7 +95,7 @@ void BM_Certified(benchmark::State& state, std::string stem, double tolerance, i
   const PointTest in = point_test(file);
   const geometry::Box w = file.model->workspace().bbox();
   double hit_n = 0.0, hit_s = 0.0, envelope = 0.0;
-  for (double x = 64.0; x <= 4096.0 * 1.0001; x *= std::sqrt(2.0)) {
+  for (double x = 64.0; x <= 8192.0 * 1.0001; x *= std::sqrt(2.0)) {
     const int n = static_cast<int>(std::lround(x));
     const auto start = Clock::now();
     const double a = grid_area(in, w, n);
@@ -104,7 +107,7 @@ void BM_Certified(benchmark::State& state, std::string stem, double tolerance, i
       break;
     }
   }
-  state.counters["grid_first_hit_N"] = hit_n;  // 0: no hit up to 4096
+  state.counters["grid_first_hit_N"] = hit_n;  // 0: no hit up to 8192
   state.counters["grid_first_hit_s"] = hit_s;
   state.counters["grid_N_for_1e-6"] = envelope / 1e-6;
 }
