@@ -73,9 +73,11 @@ def main():
             beat += ratio > 1
             ratio_txt = f"{ratio:.2g}"
         else:
+            # No hit: the grid was still outside the bounds at 8192², so it
+            # needs more than that grid's time.
             grid_txt = f"none up to 8192² ({fmt_time(hit_s)})"
-            beat += 1
-            ratio_txt = "∞"
+            beat += hit_s > t1
+            ratio_txt = f"> {hit_s / t1:.2g}"
         rows.append(
             f"| `{stem}` | {one['area_lower']:.10g} … {one['area_upper']:.10g} | {w1:.1e} | {fmt_time(t1)} | "
             f"{speed} | {nine_txt} | {grid_txt} | {ratio_txt} | {one.get('grid_N_for_1e-6', 0):.3g} |")
@@ -94,7 +96,7 @@ def main():
         "(relative error × N, the grid's convergence) needs to guarantee 1e-6.",
         "",
         f"Targets: 1e-6 in ≤ 100 ms on one thread: **{met6} of {n}** cases; 1e-9 in ≤ 1 s: **{met9} of {n}**; "
-        f"faster than the grid's first hit: **{beat} of {n}**.",
+        f"faster than the grid's first hit (or than its 8192² grid, when none hit): **{beat} of {n}**.",
         "",
         "| dataset | certified bounds (1e-6) | width | 1 thread | 2 threads | 1e-9: time, width | grid first hit "
         "| grid / certified | grid N for 1e-6 |",
