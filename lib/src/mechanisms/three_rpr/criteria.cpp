@@ -51,20 +51,23 @@ struct ThreeRprTwist {
   template <class T> struct Parts {
     T det, w0, w1, w2, rho2;
   };
+  // Row j of A' at P, (n_j, c_j x n_j), and ρ_j² = |d_j|².
+  template <class T> std::array<T, 4> row(std::size_t j, const T& x, const T& y) const {
+    const T dx = x - e[j].x, dy = y - e[j].y;
+    T nx = dx, ny = dy;
+    if (revolute) {
+      nx = -dy;
+      ny = dx;
+    }
+    return {nx, ny, c[j].x * ny - c[j].y * nx, certified::sqr(dx) + certified::sqr(dy)};  // (B_j - P) x n_j = c_j x n_j
+  }
   template <class T> Parts<T> parts(const T& x, const T& y) const {
     std::array<std::array<T, 3>, 3> a;
     std::array<T, 3> rho2;
     for (std::size_t j = 0; j < 3; ++j) {
-      const T dx = x - e[j].x, dy = y - e[j].y;
-      T nx = dx, ny = dy;
-      if (revolute) {
-        nx = -dy;
-        ny = dx;
-      }
-      a[j][0] = nx;
-      a[j][1] = ny;
-      a[j][2] = c[j].x * ny - c[j].y * nx;  // (B_j - P) x n_j = c_j x n_j
-      rho2[j] = certified::sqr(dx) + certified::sqr(dy);
+      const std::array<T, 4> r = row(j, x, y);
+      a[j] = {r[0], r[1], r[2]};
+      rho2[j] = r[3];
     }
     const auto i = static_cast<std::size_t>(leg);
     const std::size_t j = (i + 1) % 3, k = (i + 2) % 3;
@@ -84,17 +87,11 @@ struct ThreeRprTwist {
   template <class T> detail::Cubic<T> jacobian_cubic(const T& x, const T& y) const {
     T a[3][3], w[3];
     for (std::size_t j = 0; j < 3; ++j) {
-      const T dx = x - e[j].x, dy = y - e[j].y;
-      T nx = dx, ny = dy;
-      if (revolute) {
-        nx = -dy;
-        ny = dx;
-      }
-      a[j][0] = nx;
-      a[j][1] = ny;
-      a[j][2] = (c[j].x * ny - c[j].y * nx) / length;
-      const T rho2 = certified::sqr(dx) + certified::sqr(dy);
-      w[j] = revolute ? rho2 * rho2 : rho2;
+      const std::array<T, 4> r = row(j, x, y);
+      a[j][0] = r[0];
+      a[j][1] = r[1];
+      a[j][2] = r[2] / length;
+      w[j] = revolute ? r[3] * r[3] : r[3];
     }
     return detail::gram_invariants(a, w);
   }
