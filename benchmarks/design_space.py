@@ -500,7 +500,7 @@ def main():
     ap.add_argument("--build", type=pathlib.Path,
                     default=pathlib.Path(os.environ.get("PKMWS_BUILD_DIR", ROOT / "build")))
     ap.add_argument("--designs", type=int, default=256, help="Sobol designs per sweep (default 256)")
-    ap.add_argument("--gci-designs", type=int, default=24, help="designs of the GCI sweep (default 24)")
+    ap.add_argument("--gci-designs", type=int, default=48, help="designs of the GCI sweep (default 48)")
     ap.add_argument("--rounds", type=int, default=3, help="rounds, best reported (default 3)")
     args = ap.parse_args()
     args.build = args.build.resolve()
