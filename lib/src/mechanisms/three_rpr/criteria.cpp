@@ -244,6 +244,7 @@ CriterionField three_rpr_conditioning(const mechanisms::ThreeRpr& mechanism, con
   c.name = kappa ? "condition_number" : "velocity_ratio";
   c.unit = kappa ? "" : "|dq|/|dx'|";
   c.key = kappa ? "three_rpr.kappa" : "three_rpr.vratio";
+  c.characteristic_length = impl.length;
   c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
   if (kappa) {
     c.threshold_min = 1.0;

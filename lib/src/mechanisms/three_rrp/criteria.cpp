@@ -218,6 +218,7 @@ CriterionField three_rrp_velocity_ratio(const mechanisms::ThreeRrp& mechanism, c
   ThreeRrpChains impl(mechanism, 0, 3);
   impl.length = length_of(mechanism, criteria);
   CriterionField c = make(impl, mechanism, "velocity_ratio", "vratio");
+  c.characteristic_length = impl.length;
   c.unit = "|dq|/|dx'|";
   c.level = [](double t) { return t * t; };
   mechanisms::Criteria with_length;
@@ -231,6 +232,7 @@ CriterionField three_rrp_condition_number(const mechanisms::ThreeRrp& mechanism,
   ThreeRrpChains impl(mechanism, 0, 4);
   impl.length = length_of(mechanism, criteria);
   CriterionField c = make(impl, mechanism, "condition_number", "kappa");
+  c.characteristic_length = impl.length;
   c.unit = "";
   c.threshold_min = 1.0;
   // κ <= t  <=>  σ_min² / σ_max² >= 1 / t².
