@@ -127,6 +127,10 @@ struct ThreeRprTwist {
     }
     return sqrt(p.rho2) * num / abs(p.det);
   }
+  // ScalarField::excluded: the conditioning fields are defined everywhere but
+  // at the base joints (points), so only their smoothness test (the roots'
+  // enclosures) can say anything, and it never says `outside`.
+  bool excluded(const Box& b) const { return what < 3 && domain(b) == CellState::outside; }
   CellState domain(const Box& b) const {
     if (what == 2) return CellState::inside;  // a polynomial
     if (what >= 3) {

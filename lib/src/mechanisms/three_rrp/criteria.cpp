@@ -118,6 +118,17 @@ struct ThreeRrpChains {
   }
   // Smooth: cranks off their type-1 singularity (w_i > 0), and det A ≠ 0
   // (pressure angle, reaction) or the roots used simple (velocity ratio, κ).
+  // ScalarField::excluded: for the conditioning fields, the cranks' reach
+  // alone (their smoothness test, the roots' enclosures, never says `outside`).
+  bool excluded(const Box& b) const {
+    if (what < 3) return domain(b) == CellState::outside;
+    if (!crank) return false;
+    const Parts<Interval> p = parts(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y));
+    for (const Interval& w2 : p.weight) {
+      if (w2.hi <= 0.0) return true;
+    }
+    return false;
+  }
   CellState domain(const Box& b) const {
     const Interval x(b.min.x, b.max.x), y(b.min.y, b.max.y);
     const Parts<Interval> p = parts(x, y);
