@@ -184,6 +184,19 @@ TEST(ReportArea, ConditionNumberLimitStatesItsCharacteristicLength) {
   ASSERT_EQ(given.criteria.size(), 1u);
   EXPECT_EQ(given.criteria[0].characteristic_length, 0.25);
 
+  // The 3-PRP example with κ <= 6 and L = 0.5 mm: κ is far above 6 everywhere,
+  // the limited workspace is certified empty, and the text says so (no 0 / 0).
+  std::string prp = test::slurp(test::dataset("three_prp_example_alpha20"));
+  const std::string alpha_limit = "\"max_pressure_angle_deg\": 20.0";
+  ASSERT_NE(prp.find(alpha_limit), std::string::npos);
+  prp.replace(prp.find(alpha_limit), alpha_limit.size(), "\"max_condition_number\": 6, \"characteristic_length\": 0.5");
+  const report::AreaReport empty = report::area(io::parse_mechanism_text(prp, "prp_kappa.json"), report::AreaOptions{});
+  EXPECT_EQ(empty.area_upper, 0.0);
+  EXPECT_NE(report::to_text(empty).find("area       0 mm²  (certified: the limited workspace is empty)\n"),
+            std::string::npos)
+      << report::to_text(empty);
+  EXPECT_EQ(report::to_text(empty).find("nan"), std::string::npos) << report::to_text(empty);
+
   // A pressure-angle limit has no length: none is stated.
   const report::AreaReport alpha = report::area(io::load_mechanism(test::dataset("five_bar_dextar_pp_alpha40")), o);
   ASSERT_EQ(alpha.criteria.size(), 1u);

@@ -270,8 +270,12 @@ std::string to_text(const AreaReport& r) {
   std::string t = format("%s (%s)\n", r.name.c_str(), r.mechanism.c_str());
   const double area = r.area, lo = r.area_lower, hi = r.area_upper;
   if (r.limited) {
-    t += format("area       %.10g %s  (certified: %.12g <= area <= %.12g, width %.2g of the area)\n", area,
-                unit.c_str(), lo, hi, (hi - lo) / hi);
+    if (hi > 0.0) {
+      t += format("area       %.10g %s  (certified: %.12g <= area <= %.12g, width %.2g of the area)\n", area,
+                  unit.c_str(), lo, hi, (hi - lo) / hi);
+    } else {  // certified empty: no relative width (0 / 0)
+      t += format("area       0 %s  (certified: the limited workspace is empty)\n", unit.c_str());
+    }
     for (const auto& c : r.criteria) t += "           limited by " + criterion_limit_text(c, r.units) + "\n";
     if (!r.stopped.empty()) t += format("STOPPED    %s\n", r.stopped.c_str());
     if (!r.note.empty()) t += format("note       %s\n", r.note.c_str());
