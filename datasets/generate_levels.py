@@ -93,3 +93,15 @@ write("moma_criteria_m1_gm5_l180_kappa3",
       derived(base, "MOMA M1 (gamma = -5 deg), l = 180 mm, condition number <= 3",
               {"max_condition_number": 3.0},
               "Fig. 2b configuration; sub-level set of the condition number of dq/dP (not in the paper)"))
+
+# PAMINSA at phi = 0 at least 20 mm from the type-2 singular circle (radius
+# sqrt(R_b^2 + R_p^2 - 2 R_b R_p cos phi) = 0.25 m): the window minus the
+# annulus 0.23 <= |P| <= 0.27 m, area 0.64^2 - 4 pi 0.25 0.02 m^2 in closed form
+# (docs/theory/level_sets.md, distance to the type-2 singularity; not in the paper).
+base = json.load(open(os.path.join(here, "three_rpr_paminsa.json")))
+d = derived(base, "Planar PAMINSA, phi = 0 deg, at least 20 mm from the type-2 singular circle",
+            {"min_singularity_distance": 0.02},
+            "Fig. 12 mechanism (the dashed type-2 singular circle at phi = 0 deg); distance limit not in the paper")
+d["orientation_deg"] = 0.0
+d["analysis_window"] = [[-0.32, -0.32], [0.32, 0.32]]
+write("three_rpr_paminsa_phi0_dsing20", d)

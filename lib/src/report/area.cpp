@@ -235,6 +235,14 @@ std::string to_json_text(const AreaReport& r) {
     report["traced_cells"] = r.limited->detail.traced_cells;
     report["undecided_cells"] = r.limited->detail.undecided_cells;
     report["curve_points"] = r.limited->detail.curve_points;
+    if (r.limited->singular_error > 0.0 || !r.limited->singular_undecided.empty()) {
+      // min_singularity_distance: the traced type-2 singular set and its bound.
+      std::size_t segments = 0;
+      for (const auto& c : r.limited->singular_curves) segments += c.size() > 1 ? c.size() - 1 : 0;
+      report["singular_segments"] = segments;
+      report["singular_error"] = r.limited->singular_error;
+      report["singular_undecided"] = r.limited->singular_undecided.size();
+    }
     if (!r.stopped.empty()) report["stopped"] = r.stopped;
     if (!r.note.empty()) report["note"] = r.note;
   }
@@ -252,7 +260,14 @@ std::string to_text(const AreaReport& r) {
     t += format("area       %.10g %s  (certified: %.12g <= area <= %.12g, width %.2g of the area)\n", area,
                 unit.c_str(), lo, hi, (hi - lo) / hi);
     for (const auto& c : r.criteria) {
-      t += format("           limited by %s <= %g\n", c.criterion.c_str(), c.threshold);
+      t += format("           limited by %s %s %g\n", c.criterion.c_str(),
+                  c.criterion == "singularity_distance" ? ">=" : "<=", c.threshold);
+    }
+    if (r.limited->singular_error > 0.0 || !r.limited->singular_undecided.empty()) {
+      std::size_t segments = 0;
+      for (const auto& c : r.limited->singular_curves) segments += c.size() > 1 ? c.size() - 1 : 0;
+      t += format("           type-2 singular curve: %zu chords within %.3g of it, %zu boxes not traced\n", segments,
+                  r.limited->singular_error, r.limited->singular_undecided.size());
     }
     if (!r.stopped.empty()) t += format("STOPPED    %s\n", r.stopped.c_str());
     if (!r.note.empty()) t += format("note       %s\n", r.note.c_str());
