@@ -179,6 +179,7 @@ class CellTracer {
     };
     std::vector<Item> stack{{u0, u1, ba, bb, 0}};
     std::vector<std::pair<Point, Point>> segments;  // in u order
+    int splits = 0;
     std::vector<double> seg_u;
     while (!stack.empty()) {
       const Item it = stack.back();
@@ -212,7 +213,9 @@ class CellTracer {
         seg_u.push_back(it.a);
         continue;
       }
-      if (it.depth >= 24) return std::nullopt;
+      // Not smooth enough here (an enclosure too wide, or a point where the
+      // bound blows up): let the quadtree split the box instead.
+      if (!std::isfinite(err) || it.depth >= 16 || ++splits > 4096) return std::nullopt;
       const double mid = 0.5 * (it.a + it.b);
       Bracket bm;
       const Root rm = root(f, mid, lo, hi, bm, out.samples);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 #include "pkmws/certified/zero_set.hpp"
@@ -41,28 +42,34 @@ Point add(Point a, Point b, double s) { return {a.x + s * b.x, a.y + s * b.y}; }
 
 // The union of the segments' stadiums (directions rounded to rational ones,
 // ~1e-16 rad: covered by the callers' radius margins).
-Region stadium_union(const std::vector<Point>& v, double r) {
-  std::vector<Region> parts;
-  parts.reserve(v.size());
+void stadium_parts(const std::vector<Point>& v, double r, std::vector<Region>& parts) {
   for (std::size_t k = 0; k + 1 < v.size(); ++k) parts.push_back(geometry::stadium(v[k], v[k + 1], r));
-  return Region::unite_all(parts);
 }
 
 }  // namespace
 
 Region polyline_tube(const std::vector<Point>& piece, double r, bool superset) {
+  std::vector<Region> parts;
+  polyline_tube_parts(piece, r, superset, parts);
+  return Region::unite_all(parts);
+}
+
+void polyline_tube_parts(const std::vector<Point>& piece, double r, bool superset, std::vector<Region>& parts) {
   std::vector<Point> v;
   for (const Point& p : piece) {
     if (v.empty() || v.back().x != p.x || v.back().y != p.y) v.push_back(p);
   }
-  if (v.empty() || !(r > 0.0)) return Region();
+  if (v.empty() || !(r > 0.0)) return;
   double scale = r;
   for (const Point& p : v) scale = std::max({scale, std::abs(p.x), std::abs(p.y)});
   // Rounding of the offsets (a few ulps of the coordinates) is covered by a margin.
   const double margin = 1e-12 * scale;
   r = superset ? r + margin : r - margin;
-  if (!(r > 0.0)) return Region();
-  if (v.size() == 1) return geometry::disk(v[0], r);
+  if (!(r > 0.0)) return;
+  if (v.size() == 1) {
+    parts.push_back(geometry::disk(v[0], r));
+    return;
+  }
   const std::size_t n = v.size() - 1;  // segments
   std::vector<Point> normal(n);
   std::vector<double> length(n);
@@ -82,9 +89,9 @@ Region polyline_tube(const std::vector<Point>& piece, double r, bool superset) {
   for (std::size_t k = 1; k < n; ++k) {
     const Point a = normal[k - 1], b = normal[k];
     const double dot = a.x * b.x + a.y * b.y, cross = a.x * b.y - a.y * b.x;
-    if (!(1.0 + dot > 0.5)) return stadium_union(v, r);  // a turn over 120°
+    if (!(1.0 + dot > 0.5)) return stadium_parts(v, r, parts);  // a turn over 120°
     const double tan_half = std::abs(cross) / (1.0 + dot);
-    if (r * tan_half > 0.999 * std::min(length[k - 1], length[k])) return stadium_union(v, r);
+    if (r * tan_half > 0.999 * std::min(length[k - 1], length[k])) return stadium_parts(v, r, parts);
     const Point m{(a.x + b.x) / (1.0 + dot), (a.y + b.y) / (1.0 + dot)};
     if (cross == 0.0) {
       left.push_back(add(v[k], a, r));
@@ -106,13 +113,13 @@ Region polyline_tube(const std::vector<Point>& piece, double r, bool superset) {
   right.push_back(add(v[n], normal[n - 1], -r));
   std::vector<Point> ring = left;
   ring.insert(ring.end(), right.rbegin(), right.rend());
-  Region body;
   try {
-    body = geometry::polygon(ring);
+    parts.push_back(geometry::polygon(ring));
   } catch (const std::invalid_argument&) {
-    return stadium_union(v, r);  // the offset chains cross (the piece bends back within 2r)
+    return stadium_parts(v, r, parts);  // the offset chains cross (the piece bends back within 2r)
   }
-  return Region::unite_all({body, geometry::disk(v.front(), r), geometry::disk(v.back(), r)});
+  parts.push_back(geometry::disk(v.front(), r));
+  parts.push_back(geometry::disk(v.back(), r));
 }
 
 double distance_to_curves(const std::vector<std::vector<Point>>& curves, Point p) {
@@ -158,11 +165,11 @@ SingularTubes singular_tubes(const mechanisms::Design& file, const Region& withi
   double length = coarse.length();
   for (const Box& b : coarse.undecided) length += std::hypot(b.width(), b.height());
   // The bounds' width is about 4 w length (two sides of the tube, each 2 w thick).
-  double w = 0.6 * options.relative_tolerance * std::max(area_estimate, 0.0) / (4.0 * std::max(length, 1e-300));
+  double w = 0.9 * options.relative_tolerance * std::max(area_estimate, 0.0) / (4.0 * std::max(length, 1e-300));
   w = std::min({w, 0.25 * delta, 1e-3 * diag});
   if (!(w > 0.0)) w = 1e-9 * diag;
   zo.max_error = w;
-  zo.max_depth = 20;
+  zo.max_depth = 16;
   const certified::ZeroSetResult fine = certified::trace_zero_set(*field.surrogate, window, field.within_test, zo);
   t.curves = fine.pieces;
   t.undecided = fine.undecided;
@@ -174,14 +181,68 @@ SingularTubes singular_tubes(const mechanisms::Design& file, const Region& withi
   }
   if (!build_tubes) return t;
   std::vector<Region> in_parts, out_parts;
+  // Where S cannot be traced (it meets W's boundary tangentially at a leg's
+  // type-1 singularity, or runs into a point where g is undefined) the
+  // quadtree leaves many tiny boxes and tiny traced pieces. They are grouped
+  // by a grid of side c: each group's bounding box B (boxes, and pieces
+  // widened by w) gives one disk of radius δ + ½ diag(B) ⊇ B ⊕ disk(δ) in the
+  // inner tube; the pieces grouped so are left out of the outer tube (a
+  // subset of it stays a subset).
+  // c grows (by 2) until at most max_parts pieces and groups are left, which
+  // bounds the exact Boolean work; the width a group adds is about that of
+  // the S it stands for (its disk's rim), whatever c.
+  constexpr std::size_t max_parts = 3000;
+  std::vector<double> piece_size;
   for (const auto& piece : t.curves) {
-    in_parts.push_back(polyline_tube(piece, delta + t.error, true));
-    if (delta - t.error > 0.0) out_parts.push_back(polyline_tube(piece, delta - t.error, false));
+    Box bb;
+    for (const Point& p : piece) bb.expand(p);
+    piece_size.push_back(std::max(bb.width(), bb.height()));
   }
-  for (const Box& b : t.undecided) {
-    const Point c{0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)};
+  double c = 1e-5 * delta;
+  for (int it = 0; it < 40; ++it) {
+    std::size_t parts = 0;
+    std::map<std::pair<long long, long long>, int> cells;
+    const auto key_of = [&](const Box& b) {
+      return std::make_pair(static_cast<long long>(std::floor((0.5 * (b.min.x + b.max.x) - window.min.x) / c)),
+                            static_cast<long long>(std::floor((0.5 * (b.min.y + b.max.y) - window.min.y) / c)));
+    };
+    for (std::size_t k = 0; k < t.curves.size(); ++k) {
+      if (piece_size[k] >= c) {
+        ++parts;
+      } else {
+        Box bb;
+        for (const Point& p : t.curves[k]) bb.expand(p);
+        cells[key_of(bb)] = 1;
+      }
+    }
+    for (const Box& b : t.undecided) cells[key_of(b)] = 1;
+    if (parts + cells.size() <= max_parts || c > 0.25 * delta) break;
+    c *= 2.0;
+  }
+  std::map<std::pair<long long, long long>, Box> groups;
+  const auto group = [&](const Box& b) {
+    const Point m{0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)};
+    const auto key = std::make_pair(static_cast<long long>(std::floor((m.x - window.min.x) / c)),
+                                    static_cast<long long>(std::floor((m.y - window.min.y) / c)));
+    groups[key].expand(b);
+  };
+  for (const auto& piece : t.curves) {
+    Box bb;
+    for (const Point& p : piece) bb.expand(p);
+    if (std::max(bb.width(), bb.height()) < c) {
+      bb.min = {bb.min.x - t.error, bb.min.y - t.error};
+      bb.max = {bb.max.x + t.error, bb.max.y + t.error};
+      group(bb);
+      continue;
+    }
+    polyline_tube_parts(piece, delta + t.error, true, in_parts);
+    if (delta - t.error > 0.0) polyline_tube_parts(piece, delta - t.error, false, out_parts);
+  }
+  for (const Box& b : t.undecided) group(b);
+  for (const auto& [key, b] : groups) {
+    const Point m{0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)};
     const double r = (delta + 0.5 * std::hypot(b.width(), b.height())) * (1.0 + 1e-12);
-    in_parts.push_back(geometry::disk(c, r));
+    in_parts.push_back(geometry::disk(m, r));
   }
   t.inner_tube = Region::unite_all(in_parts);
   t.outer_tube = Region::unite_all(out_parts);

@@ -39,6 +39,9 @@ SingularTubes singular_tubes(const mechanisms::Design& file, const geometry::Reg
 /// The tube of radius r around a polyline (⊇ the union of its segments'
 /// capsules when `superset`, ⊆ it otherwise), exact through Region.
 geometry::Region polyline_tube(const std::vector<geometry::Point>& piece, double r, bool superset);
+/// The same as parts to unite (one polygon and its end disks, or stadiums).
+void polyline_tube_parts(const std::vector<geometry::Point>& piece, double r, bool superset,
+                         std::vector<geometry::Region>& parts);
 
 /// d(P) from the traced curves (brute force over the segments; for tests,
 /// eval and the grid view): the distance to the chord polylines.
