@@ -159,6 +159,10 @@ LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::ve
                                    const certified::LevelSetOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   LimitedWorkspace out;
+  // A mechanism without the type-2 determinant refuses before its workspace is built.
+  for (const Limit& l : limits) {
+    if (l.name == "singularity_distance") (void)detail::singular_field(file);
+  }
   const geometry::Region within = criteria_domain(file);
   // Group by surrogate: the stricter level per key.
   std::map<std::string, std::pair<CriterionField, double>> by_key;
