@@ -121,6 +121,7 @@ TEST(SingularityDistance, BiglideAlignmentLineAgainstTheExactStadium) {
   const double xa = edge(w.bbox().min.x - 10.0), xb = edge(w.bbox().max.x + 10.0);
   for (int i = 1; i < 100; ++i) ASSERT_TRUE(in_w(xa + (xb - xa) * i / 100.0));  // one interval
   const double exact = w.subtract(geometry::stadium({xa, ystar}, {xb, ystar}, delta)).area();
+  std::printf("[ exact    ] y* = %.12g, %.12g\n", ystar, exact);
   const criteria::LimitedWorkspace lw = limited(f);
   EXPECT_LE(lw.region.area_lower, exact * (1 + 1e-12));
   EXPECT_GE(lw.region.area_upper, exact * (1 - 1e-12));
@@ -232,6 +233,7 @@ void check_against_samples(const io::MechanismFile& f, const std::function<doubl
   double perimeter = 0.0;
   for (const auto& comp : f.model->workspace().components()) perimeter += comp.perimeter;
   const double slack = (perimeter + 2.0 * length) * (std::hypot(cx, cy) + gap);
+  std::printf("[ grid     ] %d^2 cell count %.10g (slack %.2g), %zu points of S sampled\n", m, count, slack, s.size());
   EXPECT_GE(count, lw.region.area_lower - slack);
   EXPECT_LE(count, lw.region.area_upper + slack);
 }
