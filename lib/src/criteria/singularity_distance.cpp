@@ -219,12 +219,18 @@ SingularTubes singular_tubes(const mechanisms::Design& file, const Region& withi
     if (parts + cells.size() <= max_parts || c > 0.25 * delta) break;
     c *= 2.0;
   }
-  std::map<std::pair<long long, long long>, Box> groups;
-  const auto group = [&](const Box& b) {
+  struct Group {
+    Box box;
+    std::vector<Point> on_curve;  // chord points (each within w of S)
+  };
+  std::map<std::pair<long long, long long>, Group> groups;
+  const auto group = [&](const Box& b, const Point* on_curve) {
     const Point m{0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)};
     const auto key = std::make_pair(static_cast<long long>(std::floor((m.x - window.min.x) / c)),
                                     static_cast<long long>(std::floor((m.y - window.min.y) / c)));
-    groups[key].expand(b);
+    Group& g = groups[key];
+    g.box.expand(b);
+    if (on_curve) g.on_curve.push_back(*on_curve);
   };
   for (const auto& piece : t.curves) {
     Box bb;
@@ -232,17 +238,29 @@ SingularTubes singular_tubes(const mechanisms::Design& file, const Region& withi
     if (std::max(bb.width(), bb.height()) < c) {
       bb.min = {bb.min.x - t.error, bb.min.y - t.error};
       bb.max = {bb.max.x + t.error, bb.max.y + t.error};
-      group(bb);
+      group(bb, &piece.front());
       continue;
     }
     polyline_tube_parts(piece, delta + t.error, true, in_parts);
     if (delta - t.error > 0.0) polyline_tube_parts(piece, delta - t.error, false, out_parts);
   }
-  for (const Box& b : t.undecided) group(b);
-  for (const auto& [key, b] : groups) {
+  for (const Box& b : t.undecided) group(b, nullptr);
+  for (const auto& [key, g] : groups) {
+    const Box& b = g.box;
     const Point m{0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)};
     const double r = (delta + 0.5 * std::hypot(b.width(), b.height())) * (1.0 + 1e-12);
     in_parts.push_back(geometry::disk(m, r));
+    // The outer tube keeps a disk of radius δ − w about the grouped chord
+    // point nearest the middle: within δ of S, so a subset of {d < δ}.
+    if (!g.on_curve.empty() && delta - t.error > 0.0) {
+      Point best = g.on_curve.front();
+      for (const Point& p : g.on_curve) {
+        if (std::hypot(p.x - m.x, p.y - m.y) < std::hypot(best.x - m.x, best.y - m.y)) best = p;
+      }
+      const double scale = std::max({delta, std::abs(best.x), std::abs(best.y)});
+      const double ro = (delta - t.error) - 1e-12 * scale;
+      if (ro > 0.0) out_parts.push_back(geometry::disk(best, ro));
+    }
   }
   t.inner_tube = Region::unite_all(in_parts);
   t.outer_tube = Region::unite_all(out_parts);
