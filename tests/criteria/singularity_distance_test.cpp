@@ -322,6 +322,43 @@ TEST(SingularityDistance, RandomThreeRprAgainstSampledSingularCurve) {
   check_against_samples(f, three_rpr_det(doc), 300, 4, 1e-5, true);
 }
 
+TEST(SingularityDistance, OneAndTwoThreadsGiveIdenticalBounds) {
+  const io::MechanismFile f = from_json(paminsa(25.0, 0.02));
+  certified::LevelSetOptions o;
+  o.relative_tolerance = 1e-4;
+  o.threads = 1;
+  const auto one = criteria::limited_workspace(f, criteria::file_limits(f), o);
+  o.threads = 2;
+  const auto two = criteria::limited_workspace(f, criteria::file_limits(f), o);
+  EXPECT_EQ(one.region.area_lower, two.region.area_lower);
+  EXPECT_EQ(one.region.area_upper, two.region.area_upper);
+  EXPECT_EQ(one.singular_curves.size(), two.singular_curves.size());
+}
+
+// With a sub-level criterion too (the rods' pressure angle): W' ∩ {d >= δ},
+// whose bounds must meet inclusion-exclusion with each limit alone.
+TEST(SingularityDistance, CombinesWithALevelSetCriterion) {
+  Json doc = dataset_json("biglide_simplified_dsing20");
+  doc["criteria"] = {{"min_singularity_distance", 150.0}, {"max_pressure_angle_deg", 50.0}};
+  const io::MechanismFile both = from_json(doc);
+  ASSERT_EQ(criteria::file_limits(both).size(), 2u);
+  const auto lw = limited(both);
+  Json only_alpha = doc;
+  only_alpha["criteria"].erase("min_singularity_distance");
+  const auto a = limited(from_json(only_alpha));
+  Json only_distance = doc;
+  only_distance["criteria"].erase("max_pressure_angle_deg");
+  const auto d = limited(from_json(only_distance));
+  const double w = both.model->workspace().area();
+  EXPECT_LE(lw.region.area_lower, lw.region.area_upper);
+  EXPECT_LE(lw.region.area_lower, std::min(a.region.area_upper, d.region.area_upper));
+  EXPECT_GE(lw.region.area_upper, a.region.area_lower + d.region.area_lower - w);
+  EXPECT_LT(lw.region.area_upper, a.region.area_lower);  // both limits bind
+  EXPECT_LT(lw.region.area_upper, d.region.area_lower);
+  EXPECT_LE(lw.region.width(), 1e-5 * lw.region.area_upper);
+  expect_enclosure(lw.region);
+}
+
 // ---------------------------------------------------------------------------
 // The file field and the front door.
 
