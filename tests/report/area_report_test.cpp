@@ -154,5 +154,42 @@ TEST(ReportArea, CriteriaAreaFollowsItsBudget) {
   EXPECT_NE(t.find("STOPPED    stopped by the test\n"), std::string::npos) << t;
 }
 
+// The 3-DOF condition number depends on the characteristic length L of
+// x' = (x, y, L phi): the report states the one it used, the platform's
+// circumradius (0.1 m) by default, the file's when it gives one.
+TEST(ReportArea, ConditionNumberLimitStatesItsCharacteristicLength) {
+  const auto stopped_at_once = [](report::AreaOptions& o) {
+    o.budget.bound = [](certified::LevelSetOptions lo, const std::string&) {
+      lo.deadline = std::chrono::steady_clock::now();
+      return lo;
+    };
+  };
+  report::AreaOptions o;
+  stopped_at_once(o);
+  const auto path = test::dataset("three_rpr_paminsa_phi0_kappa4");
+  const report::AreaReport r = report::area(io::load_mechanism(path), o);
+  ASSERT_EQ(r.criteria.size(), 1u);
+  EXPECT_EQ(r.criteria[0].criterion, "condition_number");
+  EXPECT_NEAR(r.criteria[0].characteristic_length, 0.1, 1e-15);
+  EXPECT_NE(report::to_text(r).find("limited by condition_number <= 4 (characteristic length L = 0.1 m)\n"),
+            std::string::npos)
+      << report::to_text(r);
+  EXPECT_NEAR(test::parsed(report::to_json_text(r))["criteria"][0]["characteristic_length"].get<double>(), 0.1, 1e-15);
+
+  std::string text = test::slurp(path);
+  const std::string key = "\"max_condition_number\": 4.0";
+  ASSERT_NE(text.find(key), std::string::npos);
+  text.replace(text.find(key), key.size(), key + ", \"characteristic_length\": 0.25");
+  const report::AreaReport given = report::area(io::parse_mechanism_text(text, "given_L.json"), o);
+  ASSERT_EQ(given.criteria.size(), 1u);
+  EXPECT_EQ(given.criteria[0].characteristic_length, 0.25);
+
+  // A pressure-angle limit has no length: none is stated.
+  const report::AreaReport alpha = report::area(io::load_mechanism(test::dataset("five_bar_dextar_pp_alpha40")), o);
+  ASSERT_EQ(alpha.criteria.size(), 1u);
+  EXPECT_EQ(alpha.criteria[0].characteristic_length, 0.0);
+  EXPECT_FALSE(test::parsed(report::to_json_text(alpha))["criteria"][0].contains("characteristic_length"));
+}
+
 }  // namespace
 }  // namespace pkmws

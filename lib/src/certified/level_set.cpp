@@ -36,10 +36,12 @@ double box_area(const Box& b) { return b.width() * b.height(); }
 
 // Value enclosure of F over a box: natural form, intersected with the centred
 // (mean-value) form when the box lies in F's smooth domain.
-Interval enclose_value(const ScalarField& f, const Box& box, CellState dom, double level) {
+Interval enclose_value(const ScalarField& f, const Box& box, double level) {
   Interval v = f.enclose(box);
   if (v.hi <= level || v.lo > level) return v;  // decided by the natural form
-  if (dom == CellState::inside && box.width() > 0.0) {
+  // The centred form needs F smooth over the box: its domain test, asked
+  // only here (it can cost as much as the enclosure).
+  if (box.width() > 0.0 && f.domain(box) == CellState::inside) {
     const Grad<Interval> j = f.grad(box);
     if (j.dx.finite() && j.dy.finite()) {
       const Point c{0.5 * (box.min.x + box.max.x), 0.5 * (box.min.y + box.max.y)};
@@ -60,9 +62,8 @@ CellState classify(const std::vector<Constraint>& cs, const Box& box, int* undec
   int undecided = 0, last = -1;
   for (std::size_t k = 0; k < cs.size(); ++k) {
     const ScalarField& f = *cs[k].field;
-    const CellState dom = f.domain(box);
-    if (dom == CellState::outside) return CellState::outside;
-    const Interval v = enclose_value(f, box, dom, cs[k].level);
+    if (f.excluded(box)) return CellState::outside;
+    const Interval v = enclose_value(f, box, cs[k].level);
     if (v.lo > cs[k].level) return CellState::outside;
     if (!(v.hi <= cs[k].level)) {
       ++undecided;

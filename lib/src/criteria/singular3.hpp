@@ -87,49 +87,83 @@ inline double cubic_root(Root which, const Cubic<double>& c) {
   if (which == Root::smallest) {
     r = std::max(r, 0.0);
   }
-  for (int it = 0; it < 3; ++it) {  // polish (the trigonometric form loses digits of a small root)
+  // Polish (the trigonometric form loses digits of a small root) while Newton
+  // lowers |p|: next to a double root p' is about 0 and a step could jump to
+  // another root or beyond.
+  for (int it = 0; it < 3; ++it) {
     const double d = cubic_slope(c, r);
     if (!(d > 0.0)) break;
-    const double step = cubic_value(c, r) / d;
-    if (!std::isfinite(step)) break;
-    r -= step;
+    const double value = cubic_value(c, r);
+    const double next = r - value / d;
+    if (!std::isfinite(next) || !(std::abs(cubic_value(c, next)) < std::abs(value))) break;
+    r = next;
   }
   return which == Root::smallest ? std::max(r, 0.0) : r;
 }
 
-// The root over a box: every root of every p with coefficients in `c`.
-inline certified::Interval cubic_root(Root which, const Cubic<certified::Interval>& c) {
+// The root over a box: every root of every p with coefficients in `c`. Its
+// two ends are proved separately, each from the centre's root r outwards by
+// steps δ growing 4× (a side that cannot be proved keeps the fallback):
+//  * largest, upper end U = r + δ: p(U) > 0, p'(U) > 0, p''(U) > 0 (no root
+//    above U: Taylor from U with the monic cube); lower end L = r - δ:
+//    p(L) < 0 (a root above L, p growing without bound);
+//  * smallest, lower end L: L <= 0, or p(L) < 0, p'(L) > 0, p''(L) < 0 (no
+//    root below L); upper end U: p(U) > 0 (a root in (0, U), p(0) = -c_0 <= 0).
+// The first step is the root's first-order displacement by the coefficients'
+// spread, spread / |p'(r)|, or, where r is (nearly) a double root
+// (p'(r) ≈ 0, two singular values about equal), the second-order one,
+// sqrt(2 spread / |p''(r)|), or for a triple root (all three equal) the
+// third-order one, cbrt(spread): a multiple root moves like a root of the
+// coefficients' change, and a first step from spread / |p'| alone would
+// start at the fallback's width.
+// One end of the enclosure (upper_end: U, else L), or the fallback's end.
+inline double root_end(Root which, bool upper_end, const Cubic<certified::Interval>& c) {
   using certified::Interval;
   const double top = c.c2.hi;
-  const Interval fallback = which == Root::largest ? Interval(std::max(0.0, c.c2.lo / 3.0), top)
-                                                   : Interval(0.0, std::max(0.0, top / 3.0));
-  if (!c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return Interval(0.0, Interval::inf);
+  const double fallback_end = which == Root::largest ? (upper_end ? top : std::max(0.0, c.c2.lo / 3.0))
+                                                     : (upper_end ? std::max(0.0, top / 3.0) : 0.0);
   const Cubic<double> mid{c.c2.mid(), c.c1.mid(), c.c0.mid()};
   const double r = cubic_root(which, mid);
-  const double slope = std::abs(cubic_slope(mid, r));
-  // How far the coefficients' spread moves the root (first order), and a floor.
+  const double slope = std::abs(cubic_slope(mid, r)), curvature = std::abs(cubic_curvature(mid, r));
+  // How far the coefficients' spread moves the root, and a floor.
   const double spread = 0.5 * (c.c2.width() * r * r + c.c1.width() * std::abs(r) + c.c0.width());
-  double delta = std::max(slope > 0.0 ? spread / slope : top, 1e-12 * std::max(top, 1e-300));
-  for (int attempt = 0; attempt < 12; ++attempt, delta *= 4.0) {
-    const Interval lo(r - delta), hi(r + delta);
-    bool ok = false;
+  double delta = slope > 0.0 ? spread / slope : top;
+  if (curvature > 0.0) delta = std::min(delta, std::sqrt(2.0 * spread / curvature));
+  delta = std::min(delta, std::cbrt(spread));  // a triple root (isotropy): the third derivative is 6
+  delta = std::max(std::isfinite(delta) ? delta : top, 1e-12 * std::max(top, 1e-300));
+  for (int attempt = 0; attempt < 16; ++attempt, delta *= 4.0) {
+    const double at = upper_end ? r + delta : r - delta;
+    if (upper_end ? at >= fallback_end : at <= fallback_end) break;  // no better than the fallback
+    const Interval u(at);
+    bool proved = false;
     if (which == Root::largest) {
-      // All roots below hi: p, p', p'' > 0 there (Taylor with the monic cube).
-      ok = cubic_value(c, hi).lo > 0.0 && cubic_slope(c, hi).lo > 0.0 && cubic_curvature(c, hi).lo > 0.0 &&
-           cubic_value(c, lo).hi < 0.0;  // and a root above lo
+      proved = upper_end ? cubic_value(c, u).lo > 0.0 && cubic_slope(c, u).lo > 0.0 && cubic_curvature(c, u).lo > 0.0
+                         : cubic_value(c, u).hi < 0.0;
     } else {
-      // No root below lo: p < 0, p' > 0, p'' < 0 there; a root below hi: p(hi) > 0.
-      const bool below = r - delta <= 0.0 || (cubic_value(c, lo).hi < 0.0 && cubic_slope(c, lo).lo > 0.0 &&
-                                               cubic_curvature(c, lo).hi < 0.0);
-      ok = below && cubic_value(c, hi).lo > 0.0;
+      proved = upper_end ? cubic_value(c, u).lo > 0.0
+                         : cubic_value(c, u).hi < 0.0 && cubic_slope(c, u).lo > 0.0 && cubic_curvature(c, u).hi < 0.0;
     }
-    if (ok) {
-      const Interval found(std::max(r - delta, 0.0), r + delta);
-      const Interval both = certified::intersect(found, fallback);
-      return both.lo <= both.hi ? both : found;
-    }
+    if (proved) return at;
   }
-  return fallback;
+  return fallback_end;
+}
+
+inline certified::Interval cubic_root(Root which, const Cubic<certified::Interval>& c) {
+  using certified::Interval;
+  if (!c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return Interval(0.0, Interval::inf);
+  double lo = std::max(root_end(which, false, c), 0.0), hi = root_end(which, true, c);
+  // A double root λ_1 = λ_2 leaves λ_1's lower end to the fallback (p > 0 on
+  // both sides of it), λ_2 = λ_3 λ_3's upper end. The trace gives them:
+  // λ_1 + λ_2 = c_2 - λ_3 with λ_1 >= λ_2, so λ_1 >= (c_2 - λ_3) / 2, and
+  // likewise λ_3 <= (c_2 - λ_1) / 2.
+  if (which == Root::largest && lo <= c.c2.lo / 3.0) {
+    lo = std::max(lo, ((Interval(c.c2.lo) - Interval(root_end(Root::smallest, true, c))) * Interval(0.5)).lo);
+  } else if (which == Root::smallest && hi >= c.c2.hi / 3.0) {
+    hi = std::min(hi, ((Interval(c.c2.hi) - Interval(root_end(Root::largest, false, c))) * Interval(0.5)).hi);
+  }
+  // Ends that contradict each other cannot come from a family of real-rooted
+  // cubics; the enclosure of every positive semi-definite case is kept.
+  return lo <= hi ? Interval(lo, hi) : Interval(0.0, std::max(0.0, c.c2.hi));
 }
 
 // λ over a box with its coefficients there, in second-order centred forms

@@ -70,12 +70,39 @@ void criteria_area_report(AreaReport& out, const io::MechanismFile& mech, const 
   out.area = lw.region.area_estimate();
   out.area_lower = lw.region.area_lower;
   out.area_upper = lw.region.area_upper;
-  for (const auto& l : criteria::file_limits(mech)) out.criteria.push_back({l.name, l.threshold});
+  for (const auto& l : criteria::file_limits(mech)) {
+    if (l.name == "singularity_distance") {  // a distance, not a field's level set
+      out.criteria.push_back({l.name, l.threshold, 0.0});
+      continue;
+    }
+    const auto fields = criteria::fields_for(mech, l.name);
+    out.criteria.push_back({l.name, l.threshold, fields.empty() ? 0.0 : fields.front().characteristic_length});
+  }
   if (lw.detail.stopped && options.budget.bound) out.stopped = options.budget.stopped_note;
   out.note = lw.note;
   out.enclosure = lw.region;
   out.limited = std::move(lw);
 }
+
+}  // namespace
+
+Json detail::criterion_limit_json(const CriterionLimit& limit) {
+  Json out{{"criterion", limit.criterion}, {"threshold", limit.threshold}};
+  if (limit.characteristic_length > 0.0) out["characteristic_length"] = limit.characteristic_length;
+  return out;
+}
+
+std::string criterion_limit_text(const CriterionLimit& limit, const std::string& units) {
+  // min_singularity_distance limits from below.
+  const char* relation = limit.criterion == "singularity_distance" ? " >= " : " <= ";
+  std::string t = limit.criterion + relation + detail::format("%g", limit.threshold);
+  if (limit.characteristic_length > 0.0) {
+    t += detail::format(" (characteristic length L = %.6g %s)", limit.characteristic_length, units.c_str());
+  }
+  return t;
+}
+
+namespace {
 
 Json rectangle_json(const geometry::InscribedRectangle& r) {
   Json out{{"box", detail::box_json(r.box)},
@@ -230,7 +257,7 @@ std::string to_json_text(const AreaReport& r) {
   if (r.components_of_outer_enclosure) report["components_of"] = "outer enclosure";
   if (r.limited) {
     Json lim = Json::array();
-    for (const auto& l : r.criteria) lim.push_back({{"criterion", l.criterion}, {"threshold", l.threshold}});
+    for (const auto& l : r.criteria) lim.push_back(detail::criterion_limit_json(l));
     report["criteria"] = lim;
     report["traced_cells"] = r.limited->detail.traced_cells;
     report["undecided_cells"] = r.limited->detail.undecided_cells;
@@ -259,10 +286,7 @@ std::string to_text(const AreaReport& r) {
   if (r.limited) {
     t += format("area       %.10g %s  (certified: %.12g <= area <= %.12g, width %.2g of the area)\n", area,
                 unit.c_str(), lo, hi, (hi - lo) / hi);
-    for (const auto& c : r.criteria) {
-      t += format("           limited by %s %s %g\n", c.criterion.c_str(),
-                  c.criterion == "singularity_distance" ? ">=" : "<=", c.threshold);
-    }
+    for (const auto& c : r.criteria) t += "           limited by " + criterion_limit_text(c, r.units) + "\n";
     if (r.limited->singular_error > 0.0 || !r.limited->singular_undecided.empty()) {
       std::size_t segments = 0;
       for (const auto& c : r.limited->singular_curves) segments += c.size() > 1 ? c.size() - 1 : 0;

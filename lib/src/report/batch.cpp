@@ -34,7 +34,7 @@ Json row_json(const BatchRow& r) {
   row["time_ms"] = r.time_ms;
   if (!r.criteria.empty()) {
     Json lim = Json::array();
-    for (const auto& l : r.criteria) lim.push_back({{"criterion", l.criterion}, {"threshold", l.threshold}});
+    for (const auto& l : r.criteria) lim.push_back(detail::criterion_limit_json(l));
     row["criteria"] = lim;
   }
   if (r.real) {
@@ -129,7 +129,7 @@ std::string summary_markdown(const BatchReport& report) {
     if (!r.criteria.empty()) {
       std::string limits;
       for (const auto& c : r.criteria) {
-        limits += (limits.empty() ? "" : ", ") + c.criterion + " <= " + format("%g", c.threshold);
+        limits += (limits.empty() ? "" : ", ") + criterion_limit_text(c, r.units);
       }
       note = "limited by " + limits + " (reachable " + format("%.10g", r.reachable_area) + ")";
     } else if (r.real) {

@@ -11,7 +11,8 @@
 #include "pkmws/mechanisms/mechanism.hpp"
 
 namespace pkmws::report {
-struct ExplainReport;  // pkmws/report/explain.hpp
+struct ExplainReport;   // pkmws/report/explain.hpp
+struct CriterionLimit;  // pkmws/report/area.hpp
 }
 
 namespace pkmws::report::detail {
@@ -34,5 +35,7 @@ Json joint_vocabulary(const std::vector<mechanisms::JointInfo>& joints, const st
 /// The pose-level collision test as `explain` and `eval` report it: reachable,
 /// collides, collisions ["a / b", ...], pairs [{parts, kind, clearance, collides}].
 Json collisions_json(const ExplainReport& report);
+/// {"criterion", "threshold"[, "characteristic_length"]} of a criteria limit (area, batch).
+Json criterion_limit_json(const CriterionLimit& limit);
 
 }  // namespace pkmws::report::detail

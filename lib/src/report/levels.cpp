@@ -92,6 +92,7 @@ std::string to_json_text(const LevelsReport& run) {
   j["units"] = run.units;  // lengths; areas in units² (docs/format.md (output vocabulary))
   j["criterion"] = run.criterion;
   j["criterion_units"] = run.criterion_units;  // of the levels `from` and `to`
+  if (run.field.characteristic_length > 0.0) j["characteristic_length"] = run.field.characteristic_length;
   Json bands = Json::array();
   for (std::size_t k = 0; k < run.bands.size(); ++k) {
     const auto& b = run.bands[k];
@@ -116,6 +117,10 @@ std::string to_text(const LevelsReport& run) {
   using detail::format;
   std::string t = format("%s: %s bands (%s), areas in %s, certified\n", run.name.c_str(), run.criterion.c_str(),
                          run.criterion_units.c_str(), (run.units + "²").c_str());
+  if (run.field.characteristic_length > 0.0) {
+    t += format("characteristic length L = %.6g %s (x' = (x, y, L phi))\n", run.field.characteristic_length,
+                run.units.c_str());
+  }
   t += format("%-18s %-20s %-20s %-20s %-20s\n", "band", "area_lower", "area_upper", "sublevel_lower", "sublevel_upper");
   for (std::size_t k = 0; k < run.bands.size(); ++k) {
     const std::string band = k == 0 ? format("<= %g", run.levels[k])

@@ -4,6 +4,8 @@
 // jets and enclosures, the characteristic length, and certified areas against grids.
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <cmath>
 #include <random>
 #include <string>
@@ -57,6 +59,52 @@ TEST(ThreeRprConditioning, CubicRootsAreTheSquaredSingularValues) {
   // A singular matrix: λ_3 = 0 exactly.
   const double s[3][3] = {{1.0, 0.0, 0.0}, {0.0, 2.0, 0.0}, {1.0, 2.0, 0.0}};
   EXPECT_EQ(criteria::detail::cubic_root(criteria::detail::Root::smallest, criteria::detail::gram_invariants(s, w)), 0.0);
+}
+
+// Two equal singular values (the isotropic centre of a symmetric platform,
+// or where λ_2 = λ_3 crosses): a double root moves like the square root of
+// the coefficients' spread, and each end is proved on its own (the end a
+// double root hides, from the trace). Matrices within 1e-9 of a matrix with a
+// double (or triple) singular value: the interval invariants' roots enclose
+// every member's and are near the second-order displacement (~3e-5; a triple
+// root's third-order one, ~1e-2), not the fallback [c_2 / 3, c_2] or
+// [0, c_2 / 3] (widths 0.6 to 6).
+TEST(ThreeRprConditioning, DoubleRootsAreEnclosedTightly) {
+  using certified::Interval;
+  using criteria::detail::Root;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double eps = 1e-9;
+  for (const auto& [d0, d1, d2] : {std::tuple{2.0, 2.0, 1.0}, std::tuple{3.0, 0.5, 0.5}, std::tuple{1.0, 1.0, 1.0}}) {
+    const double rot[3][3] = {{0.6, -0.8, 0.0}, {0.8, 0.6, 0.0}, {0.0, 0.0, 1.0}};
+    const double d[3] = {d0, d1, d2};
+    Interval a[3][3];
+    double centre[3][3];
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        centre[i][j] = d[i] * rot[i][j];
+        a[i][j] = Interval(centre[i][j] - eps, centre[i][j] + eps);
+      }
+    }
+    const Interval w[3] = {Interval(1.0), Interval(1.0), Interval(1.0)};
+    const auto ci = criteria::detail::gram_invariants(a, w);
+    const Interval l1 = criteria::detail::cubic_root(Root::largest, ci);
+    const Interval l3 = criteria::detail::cubic_root(Root::smallest, ci);
+    const double within = d0 == d2 ? 5e-2 : 1e-3;
+    EXPECT_LT(l1.width(), within) << d0 << " " << d1 << " " << d2;
+    EXPECT_LT(l3.width(), within) << d0 << " " << d1 << " " << d2;
+    const double dw[3] = {1.0, 1.0, 1.0};
+    for (int k = 0; k < 300; ++k) {
+      double m[3][3];
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) m[i][j] = centre[i][j] + eps * u(rng);
+      }
+      const auto c = criteria::detail::gram_invariants(m, dw);
+      const double r1 = criteria::detail::cubic_root(Root::largest, c), r3 = criteria::detail::cubic_root(Root::smallest, c);
+      EXPECT_TRUE(l1.contains(r1)) << r1 << " not in [" << l1.lo << ", " << l1.hi << "]";
+      EXPECT_TRUE(l3.contains(r3)) << r3 << " not in [" << l3.lo << ", " << l3.hi << "]";
+    }
+  }
 }
 
 TEST(ThreeRprConditioning, SurrogatesAgreeWithTheEvaluationsSvd) {

@@ -50,6 +50,11 @@ class ScalarField {
   /// Conservative position of the box with respect to the open set where F is
   /// C² (and defined): `inside` only if the whole box is in it.
   virtual CellState domain(const geometry::Box& box) const = 0;
+  /// True only if F is undefined on the whole box (its constraint fails
+  /// there): domain(box) == outside, which a field may answer without the
+  /// smoothness part of its domain test (the cells a level set decides by
+  /// enclose() alone need no more).
+  virtual bool excluded(const geometry::Box& box) const { return domain(box) == CellState::outside; }
 };
 
 struct LevelSetOptions {

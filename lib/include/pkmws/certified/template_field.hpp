@@ -2,7 +2,8 @@
 //   template <class T> T eval(const T& x, const T& y) const
 // for T = double, Interval, Grad<double>, Grad<Interval>, Jet<double>,
 // Jet<Interval> (use only +, -, *, /, sqr, sqrt, abs, max(., double) on T),
-// plus `CellState domain(const Box&) const` (where the field is C²).
+// plus `CellState domain(const Box&) const` (where the field is C²) and
+// optionally `bool excluded(const Box&) const` (ScalarField::excluded).
 #pragma once
 
 #include <utility>
@@ -34,6 +35,14 @@ class TemplateField final : public ScalarField {
     return impl_.template eval<J>(J::variable_x(Interval(b.min.x, b.max.x)), J::variable_y(Interval(b.min.y, b.max.y)));
   }
   CellState domain(const geometry::Box& b) const override { return impl_.domain(b); }
+  /// `bool excluded(const Box&) const` of Impl when it has one (see ScalarField).
+  bool excluded(const geometry::Box& b) const override {
+    if constexpr (requires { impl_.excluded(b); }) {
+      return impl_.excluded(b);
+    } else {
+      return impl_.domain(b) == CellState::outside;
+    }
+  }
   const Impl& impl() const { return impl_; }
 
  private:

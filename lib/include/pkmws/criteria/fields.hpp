@@ -53,6 +53,10 @@ struct CriterionField {
   /// Non-empty when the criterion is infinite (or undefined) at every point,
   /// with the reason: every sub-level set is empty, nothing needs refining.
   std::string nowhere;
+  /// The length L of x' = (x, y, L φ) the criterion uses (velocity ratio and
+  /// condition number of the 3-DOF mechanisms, in the mechanism's unit); 0 when
+  /// the criterion does not depend on one. Reports state it beside the threshold.
+  double characteristic_length = 0.0;
 };
 
 /// Capability (Mechanism::capability): the criteria of a mechanism as fields.

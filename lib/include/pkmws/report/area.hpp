@@ -52,7 +52,13 @@ struct ComponentReport {
 struct CriterionLimit {
   std::string criterion;
   double threshold = 0.0;
+  /// L of x' = (x, y, L φ) when the criterion depends on one (3-DOF velocity
+  /// ratio and condition number), else 0.
+  double characteristic_length = 0.0;
 };
+/// "condition_number <= 4 (characteristic length L = 86.6 mm)" (the length
+/// only when the criterion uses one).
+std::string criterion_limit_text(const CriterionLimit& limit, const std::string& units);
 
 struct AreaReport {
   std::string name, mechanism, units;

@@ -127,6 +127,10 @@ struct ThreeRprTwist {
     }
     return sqrt(p.rho2) * num / abs(p.det);
   }
+  // ScalarField::excluded: the conditioning fields are defined everywhere but
+  // at the base joints (points), so only their smoothness test (the roots'
+  // enclosures) can say anything, and it never says `outside`.
+  bool excluded(const Box& b) const { return what < 3 && domain(b) == CellState::outside; }
   CellState domain(const Box& b) const {
     if (what == 2) return CellState::inside;  // a polynomial
     if (what >= 3) {
@@ -244,6 +248,7 @@ CriterionField three_rpr_conditioning(const mechanisms::ThreeRpr& mechanism, con
   c.name = kappa ? "condition_number" : "velocity_ratio";
   c.unit = kappa ? "" : "|dq|/|dx'|";
   c.key = kappa ? "three_rpr.kappa" : "three_rpr.vratio";
+  c.characteristic_length = impl.length;
   c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
   if (kappa) {
     c.threshold_min = 1.0;

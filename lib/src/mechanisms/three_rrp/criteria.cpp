@@ -118,6 +118,17 @@ struct ThreeRrpChains {
   }
   // Smooth: cranks off their type-1 singularity (w_i > 0), and det A ≠ 0
   // (pressure angle, reaction) or the roots used simple (velocity ratio, κ).
+  // ScalarField::excluded: for the conditioning fields, the cranks' reach
+  // alone (their smoothness test, the roots' enclosures, never says `outside`).
+  bool excluded(const Box& b) const {
+    if (what < 3) return domain(b) == CellState::outside;
+    if (!crank) return false;
+    const Parts<Interval> p = parts(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y));
+    for (const Interval& w2 : p.weight) {
+      if (w2.hi <= 0.0) return true;
+    }
+    return false;
+  }
   CellState domain(const Box& b) const {
     const Interval x(b.min.x, b.max.x), y(b.min.y, b.max.y);
     const Parts<Interval> p = parts(x, y);
@@ -218,6 +229,7 @@ CriterionField three_rrp_velocity_ratio(const mechanisms::ThreeRrp& mechanism, c
   ThreeRrpChains impl(mechanism, 0, 3);
   impl.length = length_of(mechanism, criteria);
   CriterionField c = make(impl, mechanism, "velocity_ratio", "vratio");
+  c.characteristic_length = impl.length;
   c.unit = "|dq|/|dx'|";
   c.level = [](double t) { return t * t; };
   mechanisms::Criteria with_length;
@@ -231,6 +243,7 @@ CriterionField three_rrp_condition_number(const mechanisms::ThreeRrp& mechanism,
   ThreeRrpChains impl(mechanism, 0, 4);
   impl.length = length_of(mechanism, criteria);
   CriterionField c = make(impl, mechanism, "condition_number", "kappa");
+  c.characteristic_length = impl.length;
   c.unit = "";
   c.threshold_min = 1.0;
   // κ <= t  <=>  σ_min² / σ_max² >= 1 / t².
