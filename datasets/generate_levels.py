@@ -93,3 +93,18 @@ write("moma_criteria_m1_gm5_l180_kappa3",
       derived(base, "MOMA M1 (gamma = -5 deg), l = 180 mm, condition number <= 3",
               {"max_condition_number": 3.0},
               "Fig. 2b configuration; sub-level set of the condition number of dq/dP (not in the paper)"))
+
+# A simplified biglide whose rods align inside the workspace (l1 = 2000 mm,
+# l2 = 300 mm, B = 500 mm: u_1 = (w_1, y + B) and u_2 = (w_2, y - B) are
+# parallel where w_1 (y - B) = (y + B) w_2, the line y* = 676.5 mm), kept at
+# least 20 mm from it: W minus the stadium around W's section of that line
+# (docs/theory/level_sets.md, distance to the type-2 singularity; not in the paper).
+base = json.load(open(os.path.join(here, "biglide_simplified.json")))
+d = derived(base, "Biglide, simplified scheme, rods 2000 and 300 mm, at least 20 mm from the rods' alignment",
+            {"min_singularity_distance": 20.0},
+            "Fig. 3 (simplified scheme) with unequal rods; distance limit not in the paper")
+d["rods"] = [2000.0, 300.0]
+d["stroke"] = [[0.0, 2500.0], [0.0, 2500.0]]
+d["source"]["note"] = ("Unequal rods so that the type-2 singularity (rods aligned) lies in the workspace: on the line "
+                       "w_1 (y - B) = (y + B) w_2, y* = 676.5 mm.")
+write("biglide_simplified_dsing20", d)

@@ -63,7 +63,8 @@ TEST(LoaderMessages, NestedObjectsOfEveryKindNameTheirUnknownField) {
   criteria["criteria"] = {{"max_pressure_angle_deg", 40}, {"max_reaction", 3}};
   EXPECT_EQ(load_error(criteria),
             "criteria.max_reaction: unknown field (expected one of: max_pressure_angle_deg, max_reaction_N, load, "
-            "max_velocity_ratio, max_condition_number, characteristic_length, reaction_legs)");
+            "max_velocity_ratio, max_condition_number, characteristic_length, reaction_legs, "
+            "min_singularity_distance)");
   criteria["criteria"] = {{"max_reaction_N", 300}, {"load", {{"force", 100}}}};
   EXPECT_EQ(load_error(criteria), "criteria.load.force: unknown field (expected one of: force_N, moment_Nm)");
 

@@ -2,9 +2,13 @@
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/core/error.hpp"
 
+#include "criteria/singularity_distance.hpp"
+
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 namespace pkmws::criteria {
@@ -30,6 +34,7 @@ std::vector<Limit> file_limits(const mechanisms::Design& file) {
   if (c.max_reaction_N) out.push_back({"reaction", *c.max_reaction_N});
   if (c.max_velocity_ratio) out.push_back({"velocity_ratio", *c.max_velocity_ratio});
   if (c.max_condition_number) out.push_back({"condition_number", *c.max_condition_number});
+  if (c.min_singularity_distance) out.push_back({"singularity_distance", *c.min_singularity_distance});
   return out;
 }
 
@@ -37,8 +42,10 @@ namespace {
 
 class LimitedMechanism final : public mechanisms::Mechanism {
  public:
-  LimitedMechanism(std::shared_ptr<const mechanisms::Mechanism> base, std::vector<std::pair<CriterionField, double>> f)
-      : base_(std::move(base)), fields_(std::move(f)) {}
+  LimitedMechanism(std::shared_ptr<const mechanisms::Mechanism> base, std::vector<std::pair<CriterionField, double>> f,
+                   std::vector<std::vector<geometry::Point>> singular, double singular_distance)
+      : base_(std::move(base)), fields_(std::move(f)), singular_(std::move(singular)),
+        singular_distance_(singular_distance) {}
   std::string_view kind() const override { return base_->kind(); }
   int dof() const override { return base_->dof(); }
   std::vector<mechanisms::JointInfo> joints() const override { return base_->joints(); }
@@ -56,6 +63,10 @@ class LimitedMechanism final : public mechanisms::Mechanism {
       const double v = field.surrogate->value({pose.x, pose.y});
       if (!(v <= level)) return false;  // NaN (undefined) counts as outside
     }
+    // d(P) >= δ against the traced singular curves (within their bound w).
+    if (singular_distance_ > 0.0 && detail::distance_to_curves(singular_, {pose.x, pose.y}) < singular_distance_) {
+      return false;
+    }
     return true;
   }
   mechanisms::Drawing draw(const mechanisms::Pose& p) const override { return base_->draw(p); }
@@ -66,31 +77,101 @@ class LimitedMechanism final : public mechanisms::Mechanism {
  private:
   std::shared_ptr<const mechanisms::Mechanism> base_;
   std::vector<std::pair<CriterionField, double>> fields_;
+  std::vector<std::vector<geometry::Point>> singular_;
+  double singular_distance_ = 0.0;
 };
 
 }  // namespace
 
 std::shared_ptr<const mechanisms::Mechanism> limited_mechanism(const mechanisms::Design& file) {
   std::vector<std::pair<CriterionField, double>> fields;
+  std::vector<std::vector<geometry::Point>> singular;
+  double singular_distance = 0.0;
   for (const Limit& l : file_limits(file)) {
+    if (l.name == "singularity_distance") {
+      // The grid's view: S traced to a tight bound (not certified here).
+      const geometry::Region w = criteria_domain(file);
+      certified::LevelSetOptions o;
+      o.relative_tolerance = 1e-7;
+      detail::SingularTubes t = detail::singular_tubes(file, w, l.threshold, w.area(), o, false);
+      if (!t.nowhere.empty()) {
+        singular = {{w.bbox().min, w.bbox().max}};
+        singular_distance = std::numeric_limits<double>::infinity();
+      } else {
+        singular = std::move(t.curves);
+        singular_distance = l.threshold;
+      }
+      continue;
+    }
     for (CriterionField& f : fields_for(file, l.name)) {
       const double level = f.level(l.threshold);
       fields.emplace_back(std::move(f), level);
     }
   }
-  return std::make_shared<LimitedMechanism>(file.model, std::move(fields));
+  return std::make_shared<LimitedMechanism>(file.model, std::move(fields), std::move(singular), singular_distance);
 }
 
 geometry::Region criteria_domain(const mechanisms::Design& file) { return file.model->workspace(); }
+
+namespace {
+
+// W' ∩ { d >= δ } from W' = out.region (the workspace or its criteria-limited
+// part): with tubes T_in ⊇ { d < δ } ⊇ T_out, inner = W'.inner − T_in and
+// outer = W'.outer − T_out; the area bounds subtract the tubes' parts
+// (area(W' ∩ {d < δ}) is between area(W'.inner ∩ T_out) and area(W'.outer ∩ T_in)).
+void limit_singularity_distance(const mechanisms::Design& file, const geometry::Region& within, double delta,
+                                const certified::LevelSetOptions& options, LimitedWorkspace& out) {
+  certified::CertifiedRegion& r = out.region;
+  detail::SingularTubes t = detail::singular_tubes(file, within, delta, r.area_estimate(), options, true);
+  if (!t.nowhere.empty()) {
+    r = certified::from_exact(geometry::Region{});
+    out.note = t.nowhere;
+    return;
+  }
+  if (t.empty_set) {
+    out.note = "no type-2 singular point in the workspace: min_singularity_distance does not limit it";
+    return;
+  }
+  const bool exact = r.exact;
+  const geometry::Region inner = r.inner.subtract(t.inner_tube);
+  const geometry::Region outer = r.outer.subtract(t.outer_tube);
+  if (exact) {
+    r.area_lower = inner.area();
+    r.area_upper = outer.area();
+  } else {
+    // Regions not built (a deadline): W itself encloses W'.
+    const geometry::Region& around = r.outer.empty() && r.area_upper > 0.0 ? within : r.outer;
+    r.area_lower = std::max(0.0, r.area_lower - around.intersect(t.inner_tube).area());
+    r.area_upper = std::max(r.area_lower, r.area_upper - r.inner.intersect(t.outer_tube).area());
+  }
+  r.inner = inner;
+  r.outer = outer;
+  r.exact = false;
+  out.singular_curves = std::move(t.curves);
+  out.singular_undecided = std::move(t.undecided);
+  out.singular_error = t.error;
+  if (t.stopped) out.detail.stopped = true;
+}
+
+}  // namespace
 
 LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::vector<Limit>& limits,
                                    const certified::LevelSetOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   LimitedWorkspace out;
+  // A mechanism without the type-2 determinant refuses before its workspace is built.
+  for (const Limit& l : limits) {
+    if (l.name == "singularity_distance") (void)detail::singular_field(file);
+  }
   const geometry::Region within = criteria_domain(file);
   // Group by surrogate: the stricter level per key.
   std::map<std::string, std::pair<CriterionField, double>> by_key;
+  std::optional<double> min_distance;
   for (const Limit& l : limits) {
+    if (l.name == "singularity_distance") {
+      min_distance = min_distance ? std::max(*min_distance, l.threshold) : l.threshold;
+      continue;
+    }
     for (CriterionField& f : fields_for(file, l.name)) {
       const double level = f.level(l.threshold);
       auto it = by_key.find(f.key);
@@ -117,11 +198,14 @@ LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::ve
       cs.push_back({entry.first.surrogate.get(), entry.second});
       if (!within_test) within_test = entry.first.within_test;  // one mechanism: one workspace test
     }
-    certified::LevelSetResult r = certified::sublevel_set(cs, within, within_test, options);
+    certified::LevelSetOptions o = options;
+    if (min_distance) o.build_regions = true;  // the tubes are cut from the regions
+    certified::LevelSetResult r = certified::sublevel_set(cs, within, within_test, o);
     out.region = std::move(r.region);
     out.curves = std::move(r.curves);
     out.detail = std::move(r);
   }
+  if (min_distance && out.note.empty()) limit_singularity_distance(file, within, *min_distance, options, out);
   out.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

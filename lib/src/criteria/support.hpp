@@ -105,11 +105,13 @@ using geometry::Point;
 //   CellState within(const Box&) const;  // box ⊆ the workspace
 // The criteria's values come from the mechanism's own evaluation in the file's
 // working mode (the first answer of evaluate()).
+//   template <class T> T singular_det(const T& x, const T& y) const;  // u_1 x u_2 of the last links
 template <class Model> struct PointPlatformField {
-  enum class What { cos2eps, ratio2, kappa };
+  enum class What { cos2eps, ratio2, kappa, det };
   Model model;
   What what = What::cos2eps;
   template <class T> T eval(const T& x, const T& y) const {
+    if (what == What::det) return model.singular_det(x, y);
     if (what == What::ratio2) return detail::sigma_max2(model.rows(x, y));
     if (what == What::kappa) return detail::kappa_surrogate(model.rows(x, y));
     return certified::sqr(model.cos_eps(x, y));
@@ -191,6 +193,24 @@ CriterionField point_platform_field(const Model& model, const mechanisms::Mechan
   return c;
 }
 
+// The type-2 singular determinant of a point platform: det A = u_1 x u_2, A's
+// rows the last links' directions u_i (two-force members, [Briot]); zero where
+// the links are aligned (docs/theory/level_sets.md, distance to the type-2 singularity).
+template <class Model>
+CriterionField point_platform_singular(const Model& model, const std::string& kind) {
+  using What = typename PointPlatformField<Model>::What;
+  CriterionField c;
+  c.name = "singularity_distance";
+  c.unit = "length";
+  c.key = kind + ".det";
+  const PointPlatformField<Model> field{model, What::det};
+  c.surrogate = std::make_shared<certified::TemplateField<PointPlatformField<Model>>>(field);
+  c.level = [](double) { return 0.0; };
+  c.value = [field](geometry::Point p) { return field.template eval<double>(p.x, p.y); };
+  c.within_test = [model](const geometry::Box& b) { return model.within(b); };
+  return c;
+}
+
 // The capability CriterionFields of a point platform (valid while the mechanism lives).
 template <class Model> class PointPlatformFields final : public CriterionFields {
  public:
@@ -200,6 +220,9 @@ template <class Model> class PointPlatformFields final : public CriterionFields 
                                      const std::vector<int>& /*reaction_legs*/) const override {
     if (name == "reaction" && !criteria.load) throw std::invalid_argument("the reaction criterion needs criteria.load");
     return {point_platform_field(model_, *m_, kind_, name, criteria.load ? criteria.load->force_N : 0.0)};
+  }
+  CriterionField singular_determinant(const mechanisms::Criteria& /*criteria*/) const override {
+    return point_platform_singular(model_, kind_);
   }
 
  private:

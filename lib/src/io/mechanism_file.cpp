@@ -43,7 +43,7 @@ mechanisms::Criteria read_criteria(detail::JsonReader& doc, std::vector<int>& re
   if (!doc.has("criteria")) return c;
   auto r = doc.object("criteria");
   r.declare_fields({"max_pressure_angle_deg", "max_reaction_N", "load", "max_velocity_ratio", "max_condition_number",
-                    "characteristic_length", "reaction_legs"});
+                    "characteristic_length", "reaction_legs", "min_singularity_distance"});
   if (r.has("reaction_legs")) {
     const auto& v = r.raw("reaction_legs");
     if (!v.is_array() || v.empty()) r.fail("reaction_legs", "expected a non-empty list of leg numbers (1-based)");
@@ -67,6 +67,14 @@ mechanisms::Criteria read_criteria(detail::JsonReader& doc, std::vector<int>& re
     c.max_condition_number = k;
   }
   c.characteristic_length = r.optional_positive("characteristic_length");
+  if (r.has("min_singularity_distance")) {
+    const double d = r.number("min_singularity_distance");
+    if (!(d > 0.0) || !std::isfinite(d)) {
+      r.fail("min_singularity_distance", "must be a positive length in the file's units (the distance from P to the "
+                                         "type-2 singular curve)");
+    }
+    c.min_singularity_distance = d;
+  }
   if (r.has("load")) {
     auto l = r.object("load");
     l.declare_fields({"force_N", "moment_Nm"});

@@ -71,6 +71,10 @@ void criteria_area_report(AreaReport& out, const io::MechanismFile& mech, const 
   out.area_lower = lw.region.area_lower;
   out.area_upper = lw.region.area_upper;
   for (const auto& l : criteria::file_limits(mech)) {
+    if (l.name == "singularity_distance") {  // a distance, not a field's level set
+      out.criteria.push_back({l.name, l.threshold, 0.0});
+      continue;
+    }
     const auto fields = criteria::fields_for(mech, l.name);
     out.criteria.push_back({l.name, l.threshold, fields.empty() ? 0.0 : fields.front().characteristic_length});
   }
@@ -89,7 +93,9 @@ Json detail::criterion_limit_json(const CriterionLimit& limit) {
 }
 
 std::string criterion_limit_text(const CriterionLimit& limit, const std::string& units) {
-  std::string t = limit.criterion + " <= " + detail::format("%g", limit.threshold);
+  // min_singularity_distance limits from below.
+  const char* relation = limit.criterion == "singularity_distance" ? " >= " : " <= ";
+  std::string t = limit.criterion + relation + detail::format("%g", limit.threshold);
   if (limit.characteristic_length > 0.0) {
     t += detail::format(" (characteristic length L = %.6g %s)", limit.characteristic_length, units.c_str());
   }
@@ -256,6 +262,14 @@ std::string to_json_text(const AreaReport& r) {
     report["traced_cells"] = r.limited->detail.traced_cells;
     report["undecided_cells"] = r.limited->detail.undecided_cells;
     report["curve_points"] = r.limited->detail.curve_points;
+    if (r.limited->singular_error > 0.0 || !r.limited->singular_undecided.empty()) {
+      // min_singularity_distance: the traced type-2 singular set and its bound.
+      std::size_t segments = 0;
+      for (const auto& c : r.limited->singular_curves) segments += c.size() > 1 ? c.size() - 1 : 0;
+      report["singular_segments"] = segments;
+      report["singular_error"] = r.limited->singular_error;
+      report["singular_undecided"] = r.limited->singular_undecided.size();
+    }
     if (!r.stopped.empty()) report["stopped"] = r.stopped;
     if (!r.note.empty()) report["note"] = r.note;
   }
@@ -277,6 +291,12 @@ std::string to_text(const AreaReport& r) {
       t += format("area       0 %s  (certified: the limited workspace is empty)\n", unit.c_str());
     }
     for (const auto& c : r.criteria) t += "           limited by " + criterion_limit_text(c, r.units) + "\n";
+    if (r.limited->singular_error > 0.0 || !r.limited->singular_undecided.empty()) {
+      std::size_t segments = 0;
+      for (const auto& c : r.limited->singular_curves) segments += c.size() > 1 ? c.size() - 1 : 0;
+      t += format("           type-2 singular curve: %zu chords within %.3g of it, %zu boxes not traced\n", segments,
+                  r.limited->singular_error, r.limited->singular_undecided.size());
+    }
     if (!r.stopped.empty()) t += format("STOPPED    %s\n", r.stopped.c_str());
     if (!r.note.empty()) t += format("note       %s\n", r.note.c_str());
   } else if (r.enclosure.exact) {

@@ -71,6 +71,14 @@ struct CriterionFields {
   /// when this mechanism cannot give them.
   virtual std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& criteria,
                                              const std::vector<int>& reaction_legs) const = 0;
+  /// The type-2 (parallel) singularity of the working mode at the file's
+  /// orientation as the zero set of a signed determinant g = det A (A the
+  /// direct-kinematics Jacobian; the criterion `singularity_distance`):
+  /// `surrogate` is g (C² where its domain test says inside), `within_test`
+  /// classifies boxes against the workspace, `value` is g at a point, level 0.
+  /// Throws std::invalid_argument with a one-line reason when this mechanism
+  /// cannot give it (the default).
+  virtual CriterionField singular_determinant(const mechanisms::Criteria& criteria) const;
 };
 
 /// The fields of a criterion for a design (a mechanism file is one), one per limited leg (their
@@ -85,7 +93,8 @@ struct Limit {
   std::string name;
   double threshold = 0.0;
 };
-/// The limits in the file (max_pressure_angle_deg, max_reaction_N; throws
+/// The limits in the file (max_pressure_angle_deg, max_reaction_N, ...,
+/// min_singularity_distance as "singularity_distance", a lower limit; throws
 /// InputError (pkmws/core/error.hpp) for max_velocity_ratio where unsupported).
 std::vector<Limit> file_limits(const mechanisms::Design& file);
 
@@ -97,6 +106,14 @@ struct LimitedWorkspace {
   double time_ms = 0.0;
   /// Why the region is empty without any refinement (a field's `nowhere`), or "".
   std::string note;
+  /// With min_singularity_distance (docs/theory/level_sets.md, distance to
+  /// the type-2 singularity): the traced singular set S ∩ W as chord
+  /// polylines, their certified distance bound w to the true curve (each
+  /// point of S outside `singular_undecided` boxes is within w of a chord and
+  /// each chord point within w of S), and the boxes where S was not traced.
+  std::vector<std::vector<geometry::Point>> singular_curves;
+  double singular_error = 0.0;
+  std::vector<geometry::Box> singular_undecided;
 };
 /// The workspace of `file` limited by `limits` (same surrogate: the stricter
 /// level; several surrogates: one certified intersection of sub-level sets).

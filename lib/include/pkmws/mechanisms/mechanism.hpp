@@ -71,8 +71,12 @@ struct Criteria {
   /// L of the homogenised Jacobian dq/dx', x' = (x, y, L φ), of a 3-DOF
   /// mechanism (condition number, velocity ratio); none: the mechanism's default.
   std::optional<double> characteristic_length;
+  /// Lower limit on the distance in the plane from P to the type-2 singular
+  /// set of the working mode inside the workspace (length unit, > 0).
+  std::optional<double> min_singularity_distance;
   bool any() const {
-    return max_pressure_angle_deg || max_reaction_N || max_velocity_ratio || max_condition_number;
+    return max_pressure_angle_deg || max_reaction_N || max_velocity_ratio || max_condition_number ||
+           min_singularity_distance;
   }
 };
 

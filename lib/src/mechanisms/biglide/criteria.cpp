@@ -108,6 +108,16 @@ struct BiglideRods {
     const auto p = legs.parts(x, y);
     return {T(1.0), p.dq1, T(1.0), p.dq2};
   }
+  // det A = u_1 x u_2 = -(w_1 h_2 + h_1 w_2) (u_1 = (w_1, h_1), u_2 = (w_2, -h_2);
+  // derived from [Strutynskyi] eq. 5-6): zero where the rods are aligned.
+  template <class T> T singular_det(const T& x, const T& y) const {
+    using certified::max;
+    using certified::sqrt;
+    using std::sqrt;
+    const auto p = legs.parts(x, y);
+    const T w1 = sqrt(max(p.w1sq, 0.0)), w2 = sqrt(max(p.w2sq, 0.0));
+    return -(w1 * p.h2 + p.h1 * w2);
+  }
   CellState domain(const Box& b) const { return legs.domain(b); }
   CellState within(const Box& b) const { return legs.within(b); }
 };
@@ -182,6 +192,13 @@ class BiglideFields final : public CriterionFields {
       return {biglide_reaction(*m_, criteria.load->force_N)};
     }
     return {biglide_pressure_angle(*m_)};
+  }
+  CriterionField singular_determinant(const mechanisms::Criteria& /*criteria*/) const override {
+    if (m_->real_scheme()) {
+      throw std::invalid_argument("the real-scheme biglide's workspace is itself certified (coupler-curve boundary); "
+                                  "the distance to its type-2 singularity needs the simplified scheme");
+    }
+    return point_platform_singular(BiglideRods(*m_), "biglide");
   }
 
  private:

@@ -61,6 +61,12 @@ struct FiveBarCosEps {
     const Leg<T> g0 = leg(0, x, y), g1 = leg(1, x, y);
     return (g0.ux * g1.ux + g0.uy * g1.uy) / (T(l2[0]) * T(l2[1]));
   }
+  // det A = u_1 x u_2: zero where the distal links are aligned (type 2,
+  // [Briot]: A's rows are the distal directions; derived).
+  template <class T> T singular_det(const T& x, const T& y) const {
+    const Leg<T> g0 = leg(0, x, y), g1 = leg(1, x, y);
+    return g0.ux * g1.uy - g0.uy * g1.ux;
+  }
   // Rows of dq/dC: differentiating |C - B_i|² = l_i2² with B_i - A_i = w - u_i
   // gives dq_i = u_i . dC / (w_i x u_i) (the eval's B⁻¹A, docs/theory/five_bar.md).
   // As u_i / (w_i x u_i) (the cross product vanishes at a leg's type-1 singularity).

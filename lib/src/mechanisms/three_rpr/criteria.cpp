@@ -348,6 +348,29 @@ class ThreeRprFields final : public CriterionFields {
     out.push_back(three_rpr_assembly_mode(rpr, centre));
     return out;
   }
+  // det A' at the file's orientation, a cubic in P ([Briot]'s rows a_j; zero
+  // on the type-2 singular curve: a circle for PAMINSA, docs/theory/three_dof.md).
+  CriterionField singular_determinant(const mechanisms::Criteria& /*criteria*/) const override {
+    const mechanisms::ThreeRpr& rpr = *m_;
+    if (!rpr.leg_limits() && !rpr.analysis_window()) {
+      throw std::invalid_argument("three_rpr needs leg_limits or an analysis_window for its workspace");
+    }
+    ThreeRprTwist impl(rpr, 0, 2, mechanisms::Load{});
+    impl.det_sign = 1.0;
+    CriterionField c;
+    c.name = "singularity_distance";
+    c.unit = "length";
+    c.key = "three_rpr.det";
+    c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
+    c.level = [](double) { return 0.0; };
+    c.value = [impl](Point p) { return impl.eval<double>(p.x, p.y); };
+    c.within_test = [impl](const Box& b) { return impl.within(b); };
+    if (singular_everywhere(impl, rpr.bounds())) {
+      c.nowhere = "the 3-RPR is type-2 singular at every position at this orientation (cos phi = R_p / R_b): the "
+                  "distance to the singularity is 0 everywhere";
+    }
+    return c;
+  }
 
  private:
   const mechanisms::ThreeRpr* m_;

@@ -295,6 +295,18 @@ class ThreeRrpFields final : public CriterionFields {
     out.push_back(std::move(c));
     return out;
   }
+  // det A of the working mode +++ at the file's orientation ([Briot]'s rows
+  // a_i = [n_i, (A_i - P) x n_i]); zero on the type-2 singular curve.
+  CriterionField singular_determinant(const mechanisms::Criteria& /*criteria*/) const override {
+    const mechanisms::ThreeRrp& mech = *m_;
+    ThreeRrpChains impl(mech, 0, 2);
+    impl.det_sign = 1.0;
+    CriterionField c = make(impl, mech, "singularity_distance", "det");
+    c.unit = "length";
+    c.level = [](double) { return 0.0; };
+    c.value = [impl](Point p) { return impl.eval<double>(p.x, p.y); };
+    return c;
+  }
 
  private:
   const mechanisms::ThreeRrp* m_;

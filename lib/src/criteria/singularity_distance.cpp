@@ -1,0 +1,271 @@
+// The distance to the type-2 singularity (singularity_distance.hpp; the
+// bounds in docs/theory/level_sets.md, "Distance to the type-2 singularity").
+#include "criteria/singularity_distance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include "pkmws/certified/zero_set.hpp"
+#include "pkmws/core/error.hpp"
+#include "pkmws/geometry/primitives.hpp"
+
+namespace pkmws::criteria {
+
+// The default of the capability: no singular determinant (a module that has
+// one overrides it).
+CriterionField CriterionFields::singular_determinant(const mechanisms::Criteria& /*criteria*/) const {
+  throw std::invalid_argument("this mechanism gives no type-2 singular determinant field");
+}
+
+namespace detail {
+
+using geometry::Box;
+using geometry::Point;
+using geometry::Region;
+
+CriterionField singular_field(const mechanisms::Design& file) {
+  const auto capability = file.model->capability<CriterionFields>();
+  if (!capability) throw InputError(file.path + ": criteria.min_singularity_distance: " + capability.reason());
+  try {
+    return capability->singular_determinant(file.criteria);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(file.path + ": criteria.min_singularity_distance: " + e.what());
+  }
+}
+
+namespace {
+
+Point add(Point a, Point b, double s) { return {a.x + s * b.x, a.y + s * b.y}; }
+
+// The union of the segments' stadiums (directions rounded to rational ones,
+// ~1e-16 rad: covered by the callers' radius margins).
+void stadium_parts(const std::vector<Point>& v, double r, std::vector<Region>& parts) {
+  for (std::size_t k = 0; k + 1 < v.size(); ++k) parts.push_back(geometry::stadium(v[k], v[k + 1], r));
+}
+
+}  // namespace
+
+Region polyline_tube(const std::vector<Point>& piece, double r, bool superset) {
+  std::vector<Region> parts;
+  polyline_tube_parts(piece, r, superset, parts);
+  return Region::unite_all(parts);
+}
+
+void polyline_tube_parts(const std::vector<Point>& piece, double r, bool superset, std::vector<Region>& parts) {
+  std::vector<Point> v;
+  for (const Point& p : piece) {
+    if (v.empty() || v.back().x != p.x || v.back().y != p.y) v.push_back(p);
+  }
+  if (v.empty() || !(r > 0.0)) return;
+  double scale = r;
+  for (const Point& p : v) scale = std::max({scale, std::abs(p.x), std::abs(p.y)});
+  // Rounding of the offsets (a few ulps of the coordinates) is covered by a margin.
+  const double margin = 1e-12 * scale;
+  r = superset ? r + margin : r - margin;
+  if (!(r > 0.0)) return;
+  if (v.size() == 1) {
+    parts.push_back(geometry::disk(v[0], r));
+    return;
+  }
+  const std::size_t n = v.size() - 1;  // segments
+  std::vector<Point> normal(n);
+  std::vector<double> length(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double dx = v[k + 1].x - v[k].x, dy = v[k + 1].y - v[k].y;
+    length[k] = std::hypot(dx, dy);
+    normal[k] = {-dy / length[k], dx / length[k]};
+  }
+  // Left and right offset chains. Each edge of a chain lies on the offset
+  // line of its segment: the polygon holds the segments' rectangles. At a
+  // joint, the concave side takes the miter point (the offset lines'
+  // intersection, inside both rectangles when r tan(θ/2) <= both lengths);
+  // the convex side takes the miter point too when `superset` (the kite holds
+  // the disk's wedge), else the two points on the circle (their chord lies in
+  // the disk).
+  std::vector<Point> left{add(v[0], normal[0], r)}, right{add(v[0], normal[0], -r)};
+  for (std::size_t k = 1; k < n; ++k) {
+    const Point a = normal[k - 1], b = normal[k];
+    const double dot = a.x * b.x + a.y * b.y, cross = a.x * b.y - a.y * b.x;
+    if (!(1.0 + dot > 0.5)) return stadium_parts(v, r, parts);  // a turn over 120°
+    const double tan_half = std::abs(cross) / (1.0 + dot);
+    if (r * tan_half > 0.999 * std::min(length[k - 1], length[k])) return stadium_parts(v, r, parts);
+    const Point m{(a.x + b.x) / (1.0 + dot), (a.y + b.y) / (1.0 + dot)};
+    if (cross == 0.0) {
+      left.push_back(add(v[k], a, r));
+      right.push_back(add(v[k], a, -r));
+    } else if (superset) {
+      left.push_back(add(v[k], m, r));
+      right.push_back(add(v[k], m, -r));
+    } else if (cross > 0.0) {  // turning left: the left side is concave
+      left.push_back(add(v[k], m, r));
+      right.push_back(add(v[k], a, -r));
+      right.push_back(add(v[k], b, -r));
+    } else {
+      right.push_back(add(v[k], m, -r));
+      left.push_back(add(v[k], a, r));
+      left.push_back(add(v[k], b, r));
+    }
+  }
+  left.push_back(add(v[n], normal[n - 1], r));
+  right.push_back(add(v[n], normal[n - 1], -r));
+  std::vector<Point> ring = left;
+  ring.insert(ring.end(), right.rbegin(), right.rend());
+  try {
+    parts.push_back(geometry::polygon(ring));
+  } catch (const std::invalid_argument&) {
+    return stadium_parts(v, r, parts);  // the offset chains cross (the piece bends back within 2r)
+  }
+  parts.push_back(geometry::disk(v.front(), r));
+  parts.push_back(geometry::disk(v.back(), r));
+}
+
+double distance_to_curves(const std::vector<std::vector<Point>>& curves, Point p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& c : curves) {
+    if (c.size() == 1) best = std::min(best, std::hypot(p.x - c[0].x, p.y - c[0].y));
+    for (std::size_t k = 0; k + 1 < c.size(); ++k) {
+      const double dx = c[k + 1].x - c[k].x, dy = c[k + 1].y - c[k].y;
+      const double l2 = dx * dx + dy * dy;
+      double t = l2 > 0.0 ? ((p.x - c[k].x) * dx + (p.y - c[k].y) * dy) / l2 : 0.0;
+      t = std::clamp(t, 0.0, 1.0);
+      best = std::min(best, std::hypot(p.x - (c[k].x + t * dx), p.y - (c[k].y + t * dy)));
+    }
+  }
+  return best;
+}
+
+SingularTubes singular_tubes(const mechanisms::Design& file, const Region& within, double delta, double area_estimate,
+                             const certified::LevelSetOptions& options, bool build_tubes) {
+  const CriterionField field = singular_field(file);
+  SingularTubes t;
+  if (!field.nowhere.empty()) {
+    t.nowhere = field.nowhere;
+    return t;
+  }
+  if (within.empty()) {
+    t.empty_set = true;
+    return t;
+  }
+  const Box window = within.bbox();
+  const double diag = std::hypot(window.width(), window.height());
+  certified::ZeroSetOptions zo;
+  zo.threads = options.threads;
+  zo.deadline = options.deadline;
+  // A coarse pass for the length of S.
+  zo.max_error = 1e-3 * diag;
+  zo.max_depth = 10;
+  const certified::ZeroSetResult coarse = certified::trace_zero_set(*field.surrogate, window, field.within_test, zo);
+  if (coarse.pieces.empty() && coarse.undecided.empty()) {
+    t.empty_set = true;
+    return t;
+  }
+  double length = coarse.length();
+  for (const Box& b : coarse.undecided) length += std::hypot(b.width(), b.height());
+  // The bounds' width is about 4 w length (two sides of the tube, each 2 w thick).
+  double w = 0.9 * options.relative_tolerance * std::max(area_estimate, 0.0) / (4.0 * std::max(length, 1e-300));
+  w = std::min({w, 0.25 * delta, 1e-3 * diag});
+  if (!(w > 0.0)) w = 1e-9 * diag;
+  zo.max_error = w;
+  zo.max_depth = 16;
+  const certified::ZeroSetResult fine = certified::trace_zero_set(*field.surrogate, window, field.within_test, zo);
+  t.curves = fine.pieces;
+  t.undecided = fine.undecided;
+  t.error = fine.error;
+  t.stopped = fine.stopped;
+  if (t.curves.empty() && t.undecided.empty()) {
+    t.empty_set = true;
+    return t;
+  }
+  if (!build_tubes) return t;
+  std::vector<Region> in_parts, out_parts;
+  // Where S cannot be traced (it meets W's boundary tangentially at a leg's
+  // type-1 singularity, or runs into a point where g is undefined) the
+  // quadtree leaves many tiny boxes and tiny traced pieces. They are grouped
+  // by a grid of side c: each group's bounding box B (boxes, and pieces
+  // widened by w) gives one disk of radius δ + ½ diag(B) ⊇ B ⊕ disk(δ) in the
+  // inner tube; the pieces grouped so are left out of the outer tube (a
+  // subset of it stays a subset).
+  // c grows (by 2) until at most max_parts pieces and groups are left, which
+  // bounds the exact Boolean work; the width a group adds is about that of
+  // the S it stands for (its disk's rim), whatever c.
+  constexpr std::size_t max_parts = 3000;
+  std::vector<double> piece_size;
+  for (const auto& piece : t.curves) {
+    Box bb;
+    for (const Point& p : piece) bb.expand(p);
+    piece_size.push_back(std::max(bb.width(), bb.height()));
+  }
+  double c = 1e-5 * delta;
+  for (int it = 0; it < 40; ++it) {
+    std::size_t parts = 0;
+    std::map<std::pair<long long, long long>, int> cells;
+    const auto key_of = [&](const Box& b) {
+      return std::make_pair(static_cast<long long>(std::floor((0.5 * (b.min.x + b.max.x) - window.min.x) / c)),
+                            static_cast<long long>(std::floor((0.5 * (b.min.y + b.max.y) - window.min.y) / c)));
+    };
+    for (std::size_t k = 0; k < t.curves.size(); ++k) {
+      if (piece_size[k] >= c) {
+        ++parts;
+      } else {
+        Box bb;
+        for (const Point& p : t.curves[k]) bb.expand(p);
+        cells[key_of(bb)] = 1;
+      }
+    }
+    for (const Box& b : t.undecided) cells[key_of(b)] = 1;
+    if (parts + cells.size() <= max_parts || c > 0.25 * delta) break;
+    c *= 2.0;
+  }
+  struct Group {
+    Box box;
+    std::vector<Point> on_curve;  // chord points (each within w of S)
+  };
+  std::map<std::pair<long long, long long>, Group> groups;
+  const auto group = [&](const Box& b, const Point* on_curve) {
+    const Point m{0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)};
+    const auto key = std::make_pair(static_cast<long long>(std::floor((m.x - window.min.x) / c)),
+                                    static_cast<long long>(std::floor((m.y - window.min.y) / c)));
+    Group& g = groups[key];
+    g.box.expand(b);
+    if (on_curve) g.on_curve.push_back(*on_curve);
+  };
+  for (const auto& piece : t.curves) {
+    Box bb;
+    for (const Point& p : piece) bb.expand(p);
+    if (std::max(bb.width(), bb.height()) < c) {
+      bb.min = {bb.min.x - t.error, bb.min.y - t.error};
+      bb.max = {bb.max.x + t.error, bb.max.y + t.error};
+      group(bb, &piece.front());
+      continue;
+    }
+    polyline_tube_parts(piece, delta + t.error, true, in_parts);
+    if (delta - t.error > 0.0) polyline_tube_parts(piece, delta - t.error, false, out_parts);
+  }
+  for (const Box& b : t.undecided) group(b, nullptr);
+  for (const auto& [key, g] : groups) {
+    const Box& b = g.box;
+    const Point m{0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)};
+    const double r = (delta + 0.5 * std::hypot(b.width(), b.height())) * (1.0 + 1e-12);
+    in_parts.push_back(geometry::disk(m, r));
+    // The outer tube keeps a disk of radius δ − w about the grouped chord
+    // point nearest the middle: within δ of S, so a subset of {d < δ}.
+    if (!g.on_curve.empty() && delta - t.error > 0.0) {
+      Point best = g.on_curve.front();
+      for (const Point& p : g.on_curve) {
+        if (std::hypot(p.x - m.x, p.y - m.y) < std::hypot(best.x - m.x, best.y - m.y)) best = p;
+      }
+      const double scale = std::max({delta, std::abs(best.x), std::abs(best.y)});
+      const double ro = (delta - t.error) - 1e-12 * scale;
+      if (ro > 0.0) out_parts.push_back(geometry::disk(best, ro));
+    }
+  }
+  t.inner_tube = Region::unite_all(in_parts);
+  t.outer_tube = Region::unite_all(out_parts);
+  return t;
+}
+
+}  // namespace detail
+}  // namespace pkmws::criteria
