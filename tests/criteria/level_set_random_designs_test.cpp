@@ -16,6 +16,7 @@
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "support/fixtures.hpp"
+#include "support/limited.hpp"
 
 namespace {
 
@@ -23,19 +24,12 @@ using namespace pkmws;
 using geometry::Box;
 using geometry::Point;
 
-criteria::LimitedWorkspace limited(const io::MechanismFile& f, double tol, bool trace) {
-  certified::LevelSetOptions o;
-  o.relative_tolerance = tol;
-  o.trace = trace;
-  if (!trace) o.refine_depth = 4;
-  return criteria::limited_workspace(f, criteria::file_limits(f), o);
-}
 
 // The traced interval meets the cell method's and holds the grid estimate
 // within `slack`; it is as narrow as asked.
 void check(const io::MechanismFile& f, double tol, double grid, double slack, const std::string& what) {
-  const auto traced = limited(f, tol, true);
-  const auto cells = limited(f, 1e-3, false);
+  const auto traced = test::limited(f, tol, true);
+  const auto cells = test::limited(f, 1e-3, false);
   const auto& r = traced.region;
   EXPECT_LE(r.area_lower, r.area_upper) << what;
   EXPECT_LE(r.width(), tol * r.area_upper + 1e-15) << what;

@@ -17,22 +17,13 @@
 #include "pkmws/geometry/primitives.hpp"
 #include "pkmws/io/mechanism_file.hpp"
 #include "support/fixtures.hpp"
+#include "support/limited.hpp"
 
 namespace {
 
 using namespace pkmws;
 using geometry::Box;
 using geometry::Point;
-
-// The file's criteria-limited set: traced (the method) or cells only (layer a,
-// a shallow quadtree: wide but independent bounds).
-criteria::LimitedWorkspace limited(const io::MechanismFile& f, double tol, bool trace) {
-  certified::LevelSetOptions o;
-  o.relative_tolerance = tol;
-  o.trace = trace;
-  if (!trace) o.refine_depth = 4;
-  return criteria::limited_workspace(f, criteria::file_limits(f), o);
-}
 
 void expect_meet(const certified::CertifiedRegion& a, const certified::CertifiedRegion& b) {
   EXPECT_LE(a.area_lower, b.area_upper);
@@ -92,21 +83,21 @@ double biglide_reference(const io::MechanismFile& f) {
 TEST(LevelSetsSingular, BiglideVelocityRatioAgainstTheExactStripArea) {
   const io::MechanismFile f = io::load_mechanism(test::dataset("biglide_simplified_vratio2"));
   const double exact = biglide_reference(f);
-  const auto r = limited(f, 1e-9, true);
+  const auto r = test::limited(f, 1e-9, true);
   EXPECT_EQ(r.detail.undecided_cells, 0u);  // the edges' cells are decided outside
   EXPECT_LE(r.region.width(), 1e-9 * exact);
   // The strips' edges are found to ~1e-13 relative (x W's width ~2000 mm).
   const double slack = 1e-13 * 2000.0 * 2000.0 * 4;
   EXPECT_LE(r.region.area_lower, exact + slack);
   EXPECT_GE(r.region.area_upper, exact - slack);
-  expect_meet(r.region, limited(f, 1e-3, false).region);
+  expect_meet(r.region, test::limited(f, 1e-3, false).region);
 }
 
 TEST(LevelSetsSingular, PaminsaReactionAcrossTheSingularCircleAgainstAGrid) {
   const io::MechanismFile f = io::load_mechanism(test::dataset("three_rpr_paminsa_phi0_r110"));
-  const auto r = limited(f, 1e-6, true);
+  const auto r = test::limited(f, 1e-6, true);
   EXPECT_LE(r.region.width(), 1e-6 * r.region.area_upper);
-  expect_meet(r.region, limited(f, 1e-3, false).region);
+  expect_meet(r.region, test::limited(f, 1e-3, false).region);
   const auto& m = *f.model;
   const Box b = m.bounds();
   const auto fc = criteria::fields_for(f, "reaction");
@@ -135,10 +126,10 @@ TEST(LevelSetsSingular, PaminsaReactionAcrossTheSingularCircleAgainstAGrid) {
 // undecided cells and a width of 2.4e-7 before).
 TEST(LevelSetsSingular, MomaConditionNumberAtTheRodsSingularityAgainstAGrid) {
   const io::MechanismFile f = io::load_mechanism(test::dataset("moma_criteria_m1_gm5_l180_kappa3"));
-  const auto r = limited(f, 1e-8, true);
+  const auto r = test::limited(f, 1e-8, true);
   EXPECT_EQ(r.detail.undecided_cells, 0u);
   EXPECT_LE(r.region.width(), 1e-8 * r.region.area_upper);
-  expect_meet(r.region, limited(f, 1e-3, false).region);
+  expect_meet(r.region, test::limited(f, 1e-3, false).region);
   const auto fc = criteria::fields_for(f, "condition_number");
   ASSERT_EQ(fc.size(), 1u);
   const double limit = *f.criteria.max_condition_number;

@@ -96,6 +96,7 @@ std::string criterion_limit_text(const CriterionLimit& limit, const std::string&
   // min_singularity_distance limits from below.
   const char* relation = limit.criterion == "singularity_distance" ? " >= " : " <= ";
   std::string t = limit.criterion + relation + detail::format("%g", limit.threshold);
+  if (limit.criterion == "singularity_distance") t += " " + units;  // a length
   if (limit.characteristic_length > 0.0) {
     t += detail::format(" (characteristic length L = %.6g %s)", limit.characteristic_length, units.c_str());
   }

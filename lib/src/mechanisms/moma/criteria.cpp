@@ -3,6 +3,9 @@
 // dq/dP, from the closed-form inverse kinematics (docs/theory/level_sets.md, MOMA).
 #include "mechanisms/moma/criteria.hpp"
 
+#include <array>
+#include <utility>
+
 #include "criteria/support.hpp"
 
 namespace pkmws::criteria {
@@ -44,33 +47,29 @@ struct MomaTransmission {
     g.r2 = (T(l[i]) - g.across) * (T(l[i]) + g.across);
     return g;
   }
+  // The rod vectors u_i = P - S_i (x parts, y parts).
+  template <class T> std::pair<std::array<T, 2>, std::array<T, 2>> rods(const T& x, const T& y) const {
+    using certified::max;
+    using certified::sqrt;
+    using std::sqrt;
+    std::array<T, 2> ux, uy;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const Leg<T> g = leg(i, x, y);
+      const T r = sqrt(max(g.r2, 0.0));
+      ux[i] = g.across * n[i].x - b[i] * (r * a[i].x);
+      uy[i] = g.across * n[i].y - b[i] * (r * a[i].y);
+    }
+    return {ux, uy};
+  }
   // cos ε = (P - S_1).(P - S_2) / (l_1 l_2).
   template <class T> T cos_eps(const T& x, const T& y) const {
-    using certified::max;
-    using certified::sqrt;
-    using std::sqrt;
-    std::array<T, 2> ux, uy;
-    for (std::size_t i = 0; i < 2; ++i) {
-      const Leg<T> g = leg(i, x, y);
-      const T r = sqrt(max(g.r2, 0.0));
-      ux[i] = g.across * n[i].x - b[i] * (r * a[i].x);
-      uy[i] = g.across * n[i].y - b[i] * (r * a[i].y);
-    }
+    const auto [ux, uy] = rods(x, y);
     return (ux[0] * ux[1] + uy[0] * uy[1]) / (T(l[0]) * T(l[1]));
   }
-  // det A = u_1 x u_2 of the rod vectors u_i = P - S_i (derived from [Vasilic]
-  // eq. 3-6 as cos_eps): zero where the rods are aligned (type 2).
+  // det A = u_1 x u_2 of the rod vectors (derived from [Vasilic] eq. 3-6 as
+  // cos_eps): zero where the rods are aligned (type 2).
   template <class T> T singular_det(const T& x, const T& y) const {
-    using certified::max;
-    using certified::sqrt;
-    using std::sqrt;
-    std::array<T, 2> ux, uy;
-    for (std::size_t i = 0; i < 2; ++i) {
-      const Leg<T> g = leg(i, x, y);
-      const T r = sqrt(max(g.r2, 0.0));
-      ux[i] = g.across * n[i].x - b[i] * (r * a[i].x);
-      uy[i] = g.across * n[i].y - b[i] * (r * a[i].y);
-    }
+    const auto [ux, uy] = rods(x, y);
     return ux[0] * uy[1] - uy[0] * ux[1];
   }
   // Rows m_i = a_i - b_i c_i n_i of dq/dP, c_i = across_i / r_i: as
