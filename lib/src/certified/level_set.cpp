@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "detail/parallel.hpp"
+#include "certified/box.hpp"
 #include "pkmws/geometry/primitives.hpp"
 
 namespace pkmws::certified {
@@ -24,13 +25,6 @@ namespace {
 constexpr double inf = std::numeric_limits<double>::infinity();
 // The most a retry four levels deeper is expected to narrow the bounds.
 constexpr double max_retry_gain = 64.0;
-
-Box make_box(double x0, double y0, double x1, double y1) {
-  Box b;
-  b.min = {x0, y0};
-  b.max = {x1, y1};
-  return b;
-}
 
 double box_area(const Box& b) { return b.width() * b.height(); }
 

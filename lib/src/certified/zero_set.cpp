@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "detail/parallel.hpp"
+#include "certified/box.hpp"
 
 namespace pkmws::certified {
 
@@ -26,13 +27,6 @@ double ZeroSetResult::length() const {
 }
 
 namespace {
-
-Box make_box(double x0, double y0, double x1, double y1) {
-  Box b;
-  b.min = {x0, y0};
-  b.max = {x1, y1};
-  return b;
-}
 
 // One box in graph coordinates: u along the graph's axis, v across it.
 struct Frame {

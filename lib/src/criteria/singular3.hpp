@@ -116,12 +116,13 @@ inline double cubic_root(Root which, const Cubic<double>& c) {
 // third-order one, cbrt(spread): a multiple root moves like a root of the
 // coefficients' change, and a first step from spread / |p'| alone would
 // start at the fallback's width.
-// One end of the enclosure (upper_end: U, else L), or the fallback's end.
-inline double root_end(Root which, bool upper_end, const Cubic<certified::Interval>& c) {
-  using certified::Interval;
+//
+// Where the search for both ends starts: the centre's root r and the first step.
+struct RootStart {
+  double r = 0.0, first = 0.0;
+};
+inline RootStart root_start(Root which, const Cubic<certified::Interval>& c) {
   const double top = c.c2.hi;
-  const double fallback_end = which == Root::largest ? (upper_end ? top : std::max(0.0, c.c2.lo / 3.0))
-                                                     : (upper_end ? std::max(0.0, top / 3.0) : 0.0);
   const Cubic<double> mid{c.c2.mid(), c.c1.mid(), c.c0.mid()};
   const double r = cubic_root(which, mid);
   const double slope = std::abs(cubic_slope(mid, r)), curvature = std::abs(cubic_curvature(mid, r));
@@ -130,7 +131,17 @@ inline double root_end(Root which, bool upper_end, const Cubic<certified::Interv
   double delta = slope > 0.0 ? spread / slope : top;
   if (curvature > 0.0) delta = std::min(delta, std::sqrt(2.0 * spread / curvature));
   delta = std::min(delta, std::cbrt(spread));  // a triple root (isotropy): the third derivative is 6
-  delta = std::max(std::isfinite(delta) ? delta : top, 1e-12 * std::max(top, 1e-300));
+  return {r, std::max(std::isfinite(delta) ? delta : top, 1e-12 * std::max(top, 1e-300))};
+}
+
+// One end of the enclosure (upper_end: U, else L), or the fallback's end.
+inline double root_end(Root which, bool upper_end, const Cubic<certified::Interval>& c, const RootStart& start) {
+  using certified::Interval;
+  const double top = c.c2.hi;
+  const double fallback_end = which == Root::largest ? (upper_end ? top : std::max(0.0, c.c2.lo / 3.0))
+                                                     : (upper_end ? std::max(0.0, top / 3.0) : 0.0);
+  const double r = start.r;
+  double delta = start.first;
   for (int attempt = 0; attempt < 16; ++attempt, delta *= 4.0) {
     const double at = upper_end ? r + delta : r - delta;
     if (upper_end ? at >= fallback_end : at <= fallback_end) break;  // no better than the fallback
@@ -151,15 +162,18 @@ inline double root_end(Root which, bool upper_end, const Cubic<certified::Interv
 inline certified::Interval cubic_root(Root which, const Cubic<certified::Interval>& c) {
   using certified::Interval;
   if (!c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return Interval(0.0, Interval::inf);
-  double lo = std::max(root_end(which, false, c), 0.0), hi = root_end(which, true, c);
+  const RootStart start = root_start(which, c);
+  double lo = std::max(root_end(which, false, c, start), 0.0), hi = root_end(which, true, c, start);
   // A double root λ_1 = λ_2 leaves λ_1's lower end to the fallback (p > 0 on
   // both sides of it), λ_2 = λ_3 λ_3's upper end. The trace gives them:
   // λ_1 + λ_2 = c_2 - λ_3 with λ_1 >= λ_2, so λ_1 >= (c_2 - λ_3) / 2, and
   // likewise λ_3 <= (c_2 - λ_1) / 2.
   if (which == Root::largest && lo <= c.c2.lo / 3.0) {
-    lo = std::max(lo, ((Interval(c.c2.lo) - Interval(root_end(Root::smallest, true, c))) * Interval(0.5)).lo);
+    const double l3_hi = root_end(Root::smallest, true, c, root_start(Root::smallest, c));
+    lo = std::max(lo, ((Interval(c.c2.lo) - Interval(l3_hi)) * Interval(0.5)).lo);
   } else if (which == Root::smallest && hi >= c.c2.hi / 3.0) {
-    hi = std::min(hi, ((Interval(c.c2.hi) - Interval(root_end(Root::largest, false, c))) * Interval(0.5)).hi);
+    const double l1_lo = root_end(Root::largest, false, c, root_start(Root::largest, c));
+    hi = std::min(hi, ((Interval(c.c2.hi) - Interval(l1_lo)) * Interval(0.5)).hi);
   }
   // Ends that contradict each other cannot come from a family of real-rooted
   // cubics; the enclosure of every positive semi-definite case is kept.

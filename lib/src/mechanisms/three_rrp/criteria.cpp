@@ -116,8 +116,6 @@ struct ThreeRrpChains {
     // docs/theory/three_dof.md: R_i,max = f |v_P,i| + |m| |ω_i|.
     return (f * sqrt(sqr(w0) + sqr(w1)) + m * abs(w2)) / abs(det);
   }
-  // Smooth: cranks off their type-1 singularity (w_i > 0), and det A ≠ 0
-  // (pressure angle, reaction) or the roots used simple (velocity ratio, κ).
   // ScalarField::excluded: for the conditioning fields, the cranks' reach
   // alone (their smoothness test, the roots' enclosures, never says `outside`).
   bool excluded(const Box& b) const {
@@ -129,6 +127,8 @@ struct ThreeRrpChains {
     }
     return false;
   }
+  // Smooth: cranks off their type-1 singularity (w_i > 0), and det A ≠ 0
+  // (pressure angle, reaction) or the roots used simple (velocity ratio, κ).
   CellState domain(const Box& b) const {
     const Interval x(b.min.x, b.max.x), y(b.min.y, b.max.y);
     const Parts<Interval> p = parts(x, y);
