@@ -162,8 +162,16 @@ CriterionField point_platform_field(const Model& model, const mechanisms::Mechan
     c.key = kind + ".kappa";
     c.threshold_min = 1.0;
     c.level = detail::kappa_level;
-    c.value = [at](geometry::Point p) {
-      return at(p, [](const mechanisms::Evaluation& e) { return e.condition_number; });
+    // κ from the surrogate s = −(det/F)², κ + 1/κ = F/|det| (docs/theory/level_sets.md),
+    // in the working mode's workspace: the evaluation's κ without every mode's
+    // joints, SVDs and reasons (the GCI samples it once per grid cell).
+    c.value = [m, s = c.surrogate](geometry::Point p) {
+      if (!m->reachable({p.x, p.y, 0.0})) return detail::nan;
+      const double v = s->value(p);
+      if (!(v <= 0.0)) return detail::nan;
+      if (v == 0.0) return std::numeric_limits<double>::infinity();
+      const double r = 1.0 / std::sqrt(-v);  // κ + 1/κ >= 2
+      return r <= 2.0 ? 1.0 : 0.5 * (r + std::sqrt((r - 2.0) * (r + 2.0)));
     };
   } else if (name == "reaction") {
     c.unit = "N";

@@ -99,11 +99,15 @@ TEST(FiveBarCriteria, VelocityRatioAndConditionNumberAgreeWithTheEvaluation) {
   for (int n = 0; n < 5000 && checked < 300; ++n) {
     const Point p{ux(rng), uy(rng)};
     const auto e = m.evaluate({p.x, p.y, 0.0}, {});
+    if (!e.front().reachable) {
+      EXPECT_TRUE(std::isnan(kc.value(p)));  // outside the working mode's workspace
+    }
     if (!e.front().reachable || e.front().singular) continue;
     const double ratio = *e.front().velocity_ratio, kappa = e.front().condition_number;
     if (!(ratio < 1e3 && kappa < 1e3)) continue;  // near a singularity
     EXPECT_NEAR(vr.surrogate->value(p), ratio * ratio, 1e-9 * ratio * ratio);
     test::expect_same_sublevel(kc, p, kappa, {1.5, 3.0, 10.0});
+    EXPECT_NEAR(kc.value(p), kappa, 1e-9 * kappa);  // κ from the surrogate (the GCI's) against the SVD's
     const Box box{{p.x - 2e-4, p.y - 1e-4}, {p.x + 1e-4, p.y + 2e-4}};
     if (vr.surrogate->domain(box) == certified::CellState::inside) test::check_field(*vr.surrogate, p, 1e-6, box);
     if (kc.surrogate->domain(box) == certified::CellState::inside) test::check_field(*kc.surrogate, p, 1e-6, box);

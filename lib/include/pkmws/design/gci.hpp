@@ -1,7 +1,8 @@
 // The global conditioning index of a workspace: GCI = (1/|W|) ∫_W 1/κ dA, κ
 // the 2-norm condition number of the mechanism's inverse-kinematic Jacobian as
-// Mechanism::evaluate reports it (the file's working mode: the first
-// evaluation). A deterministic quadrature over the exact region with an error
+// Mechanism::evaluate reports it for the file's working mode (the first
+// evaluation), taken from the mechanism's condition-number criterion field
+// (capability CriterionFields, the same κ in closed form) when it has one. A deterministic quadrature over the exact region with an error
 // estimate (docs/design_space.md, "The global conditioning index").
 #pragma once
 
