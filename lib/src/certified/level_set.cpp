@@ -569,7 +569,7 @@ void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, co
     const Constraint& k = cs[static_cast<std::size_t>(active)];
     // Across W's boundary too, where the field is smooth over the whole cell
     // (a stroke limit, not a singularity): its area is then clipped to W
-    // exactly (run_once), instead of refining the points where the level
+    // exactly (summarize), instead of refining the points where the level
     // curve meets W's boundary to the depth limit.
     if (k.field->domain(cell) == CellState::inside) {
       CellTrace t = try_trace(*k.field, k.level, cell, tau);
@@ -617,20 +617,30 @@ std::vector<Box> leaf_cells(const std::vector<Box>& runs, const Box& window, int
   return out;
 }
 
-LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within, const WithinTest& within_test,
-                        const LevelSetOptions& options, double tau_override) {
-  LevelSetResult result;
+// One refinement: the cover, τ, and every undecided leaf of the cover refined
+// (and, after `deepen`, its undecided cells refined further).
+struct Pass {
   CellOptions co;
+  CellCover cover;
+  double tau = 0.0;
+  std::vector<LeafResult> per_leaf;
+  int depth = 0;          // refine depth reached below the cover's leaves
+  bool stopped = false;   // the deadline stopped it
+};
+
+Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const WithinTest& within_test,
+                const LevelSetOptions& options, double tau_override) {
+  Pass pass;
+  CellOptions& co = pass.co;
   co.window = within.bbox();
   co.base = options.base;
   co.max_depth = options.cover_depth;
   co.threads = options.threads;
   // S ⊆ W: a box outside W is outside S, whatever the fields (whose domain
   // may reach beyond W, e.g. past a stroke limit).
-  const CellCover cover_result = certified::cover(
+  pass.cover = certified::cover(
       [&](const Box& b) { return within_test(b) == CellState::outside ? CellState::outside : classify(cs, b); }, co);
-  result.cell_tests = cover_result.tests;
-  const std::vector<Box> leaves = leaf_cells(cover_result.undecided, co.window, co.base, co.max_depth);
+  const std::vector<Box> leaves = leaf_cells(pass.cover.undecided, co.window, co.base, co.max_depth);
 
   // τ: the allowed width per unit length of curve, from the cover's estimate
   // of the area and of the curve length (undecided leaves x leaf size).
@@ -638,22 +648,66 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
   if (!(tau > 0.0)) {
     const double leaf = co.window.width() / (co.base * std::ldexp(1.0, co.max_depth));
     const double length = std::max(1.0, static_cast<double>(leaves.size())) * leaf;
-    const double area_est = std::max(cover_result.area_inside + 0.5 * cover_result.area_undecided, 1e-3 * box_area(co.window) * 1e-3);
+    const double area_est = std::max(pass.cover.area_inside + 0.5 * pass.cover.area_undecided, 1e-3 * box_area(co.window) * 1e-3);
     tau = options.relative_tolerance * area_est / length;
   }
-  result.tolerance_per_length = tau;
+  pass.tau = tau;
+  pass.depth = options.refine_depth;
 
-  std::vector<LeafResult> per_leaf(leaves.size());
+  pass.per_leaf.resize(leaves.size());
   detail::ParallelPolicy policy;
   policy.threads = options.threads;
   policy.serial_threshold = 8;
   Budget budget(options, leaves.size());
   detail::for_each_block(policy, leaves.size(), leaves.size() * 64, [&](std::size_t k) {
-    refine(cs, within_test, leaves[k], 0, options.refine_depth, tau, options.trace, budget, per_leaf[k],
+    refine(cs, within_test, leaves[k], 0, options.refine_depth, tau, options.trace, budget, pass.per_leaf[k],
            detail::effective_threads(policy) > 1);
     budget.leaf_done();
   });
-  result.stopped = budget.stopped();
+  pass.stopped = budget.stopped();
+  return pass;
+}
+
+// Refines the cells a pass left undecided `levels` levels further, with the
+// same τ (its traced and decided cells stay): the retry when undecided cells
+// dominate the width. Each undecided cell is a task of its own (a few leaves
+// next to singular points hold most of them); the results replace the cells
+// in their leaf, in order, so they do not depend on the number of threads.
+void deepen(Pass& pass, const std::vector<Constraint>& cs, const WithinTest& within_test,
+            const LevelSetOptions& options, int levels) {
+  std::vector<std::pair<std::size_t, Box>> cells;
+  for (std::size_t k = 0; k < pass.per_leaf.size(); ++k) {
+    for (const Box& b : pass.per_leaf[k].undecided) cells.emplace_back(k, b);
+    pass.per_leaf[k].undecided.clear();
+  }
+  std::vector<LeafResult> parts(cells.size());
+  detail::ParallelPolicy policy;
+  policy.threads = options.threads;
+  policy.serial_threshold = 8;
+  Budget budget(options, cells.size());
+  detail::for_each_block(policy, cells.size(), cells.size() * 64, [&](std::size_t i) {
+    refine(cs, within_test, cells[i].second, 0, levels, pass.tau, options.trace, budget, parts[i]);
+    budget.leaf_done();
+  });
+  for (std::size_t i = 0; i < cells.size(); ++i) append(pass.per_leaf[cells[i].first], std::move(parts[i]));
+  pass.depth += levels;
+  pass.stopped = pass.stopped || budget.stopped();
+}
+
+// The bounds (and, with `regions`, the inner/outer regions) of a pass. The
+// pass is not changed: a retry may refine it further and summarise it again.
+LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTest& within_test,
+                         const LevelSetOptions& options, bool regions) {
+  LevelSetResult result;
+  const CellOptions& co = pass.co;
+  const CellCover& cover_result = pass.cover;
+  const std::vector<LeafResult>& per_leaf = pass.per_leaf;
+  result.cell_tests = cover_result.tests;
+  result.tolerance_per_length = pass.tau;
+  result.stopped = pass.stopped;
+  detail::ParallelPolicy policy;
+  policy.threads = options.threads;
+  policy.serial_threshold = 8;
 
   double in_lower = 0.0, traced_lower = 0.0, traced_upper = 0.0, undecided_in = 0.0;
   std::vector<Box> straddle_inside;
@@ -678,14 +732,14 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
   };
   // What every traced cell gives, inside W or across its boundary: counts,
   // the regions' boxes and the curve.
-  const auto take_trace = [&](const Box& cell, CellTrace& t) {
+  const auto take_trace = [&](const Box& cell, const CellTrace& t) {
     ++result.traced_cells;
     result.curve_points += t.points;
-    if (options.build_regions) {
+    if (regions) {
       step_boxes(t, cell, true, inner_steps);
       step_boxes(t, cell, false, outer_steps);
     }
-    if (t.curve.size() >= 2) result.curves.push_back(std::move(t.curve));
+    if (t.curve.size() >= 2) result.curves.push_back(t.curve);
   };
   std::vector<LeafSums> sums(per_leaf.size());
   detail::for_each_block(policy, per_leaf.size(), per_leaf.size() * 64, [&](std::size_t k) {
@@ -708,7 +762,7 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
     }
   });
   for (std::size_t k = 0; k < per_leaf.size(); ++k) {
-    LeafResult& r = per_leaf[k];
+    const LeafResult& r = per_leaf[k];
     result.cell_tests += r.tests;
     in_lower += sums[k].in_lower;
     undecided_in += sums[k].undecided_in;
@@ -721,13 +775,13 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
       ++result.undecided_cells;
       undecided_in += box_area(b);
     }
-    for (auto& [cell, t] : r.traced) {
+    for (const auto& [cell, t] : r.traced) {
       traced_lower += t.lower;
       traced_upper += t.upper;
       envelope_polygons(t, cell, t.sgn < 0, result.inner_polygons);  // below env_lo, or above env_hi
       take_trace(cell, t);
     }
-    for (auto& [cell, t] : r.traced_across) {  // bounded below by clipping to W exactly
+    for (const auto& [cell, t] : r.traced_across) {  // bounded below by clipping to W exactly
       envelope_polygons(t, cell, t.sgn < 0, across_inner);
       envelope_polygons(t, cell, t.sgn > 0, across_outer);
       take_trace(cell, t);
@@ -760,8 +814,8 @@ LevelSetResult run_once(const std::vector<Constraint>& cs, const Region& within,
   result.region.exact = false;
   // Past the deadline the exact regions (seconds to minutes of Boolean
   // operations on many boxes) are not started either.
-  if (options.build_regions && std::chrono::steady_clock::now() >= options.deadline) result.stopped = true;
-  if (options.build_regions && !result.stopped) {  // stopped: too many cells to be worth it
+  if (regions && std::chrono::steady_clock::now() >= options.deadline) result.stopped = true;
+  if (regions && !result.stopped) {  // stopped: too many cells to be worth it
     // Exact regions from boxes: each traced cell contributes the box below
     // (inner) / around (outer) its envelopes, so area(inner) <= area_lower
     // and area(outer) >= area_upper (the bounds use the envelopes themselves).
@@ -792,28 +846,41 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
     r.region = from_exact(within);
     return r;
   }
-  LevelSetResult r = run_once(constraints, within, within_test, options, 0.0);
-  // One retry with a tighter τ when the estimate of area or curve length was off
-  // (not when the deadline stopped the first run: the retry would stop too).
-  // A retry deeper (undecided cells dominate) costs ~16 times the first run
-  // and narrows an undecided band along a curve ~16 times: when the width is
-  // far beyond that reach (a level at the field's extreme, where the set
-  // degenerates to a curve and the interval tests cannot decide its cells at
-  // any depth), the first run's bounds are the answer.
+  // The regions (costly) only for the final pass: the retries need the bounds.
+  const auto final_result = [&](const Pass& pass, LevelSetResult&& bounds) {
+    return options.build_regions ? summarize(pass, within, within_test, options, true) : std::move(bounds);
+  };
+  Pass pass = first_pass(constraints, within, within_test, options, 0.0);
+  LevelSetResult r = summarize(pass, within, within_test, options, false);
+  // Retries (not when the deadline stopped the first run: a retry would stop
+  // too). When the traced cells dominate the width (the estimate of area or
+  // curve length was off), one rerun with a tighter τ. When the undecided
+  // cells do, they alone are refined further: as many levels as the shortfall
+  // needs if each level at least halves their area (a band along a curve
+  // halves, next to a tangency with W's boundary it shrinks ~2.8 times, around
+  // a point 4 times), at most 4 in all (~16 times narrower), again while the
+  // target is missed. When the width is far beyond that reach (a level at the
+  // field's extreme, where the set degenerates to a curve and the interval
+  // tests cannot decide its cells at any depth), the first run's bounds are
+  // the answer.
+  const auto target = [&] { return options.relative_tolerance * r.region.area_upper; };
   const double width = r.region.area_upper - r.region.area_lower;
-  const bool within_reach =
-      r.traced_width > 0.5 * width || width <= max_retry_gain * options.relative_tolerance * r.region.area_upper;
-  if (options.trace && !r.stopped && within_reach && width > options.relative_tolerance * r.region.area_upper) {
-    LevelSetOptions o = options;
-    double tau = 0.0;
-    if (r.traced_width > 0.5 * width) {
-      tau = r.tolerance_per_length * 0.5 * options.relative_tolerance * r.region.area_upper / width;
-    } else {
-      o.refine_depth = std::min(40, options.refine_depth + 4);  // undecided cells dominate: go deeper
-    }
-    r = run_once(constraints, within, within_test, o, tau);
+  const bool within_reach = r.traced_width > 0.5 * width || width <= max_retry_gain * target();
+  if (!options.trace || r.stopped || !within_reach || width <= target()) return final_result(pass, std::move(r));
+  if (r.traced_width > 0.5 * width) {
+    const double tau = r.tolerance_per_length * 0.5 * target() / width;
+    const Pass again = first_pass(constraints, within, within_test, options, tau);
+    return final_result(again, summarize(again, within, within_test, options, false));
   }
-  return r;
+  const int max_depth = std::min(40, options.refine_depth + 4);
+  while (!r.stopped && pass.depth < max_depth && r.region.area_upper - r.region.area_lower > target()) {
+    const double room = target() - r.traced_width;
+    const double need = room > 0.0 ? 1.25 * r.undecided_area / room : 16.0;
+    const int levels = std::clamp(static_cast<int>(std::ceil(std::log2(std::max(need, 2.0)))), 1, max_depth - pass.depth);
+    deepen(pass, constraints, within_test, options, levels);
+    r = summarize(pass, within, within_test, options, false);
+  }
+  return final_result(pass, std::move(r));
 }
 
 LevelSetResult sublevel_set(const ScalarField& field, double level, const Region& within, const WithinTest& within_test,
