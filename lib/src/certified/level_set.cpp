@@ -528,8 +528,16 @@ class Budget {
   std::mutex report_;
 };
 
+// How a cell certified in S lies against W (in the cheap box test): inside W;
+// across W's boundary and large (clipped to W exactly); across and small
+// (bounded by a split against the box test alone).
+enum class InsideKind : char { in_w, straddle, small_split };
+
 struct LeafResult {
   std::vector<Box> inside;      // certified in S (by value)
+  std::vector<InsideKind> inside_kind;  // per inside box
+  double in_lower = 0.0;        // area of inside boxes certified in W (in_w, and small_split's part)
+  double undecided_in = 0.0;    // small_split boxes' area W's box test left undecided
   std::vector<Box> undecided;   // at the depth limit
   std::vector<std::pair<Box, CellTrace>> traced;
   std::vector<std::pair<Box, CellTrace>> traced_across;  // traced, across W's boundary
@@ -543,6 +551,9 @@ void append(LeafResult& a, LeafResult&& b) {
     to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));
   };
   move_all(a.inside, b.inside);
+  move_all(a.inside_kind, b.inside_kind);
+  a.in_lower += b.in_lower;
+  a.undecided_in += b.undecided_in;
   move_all(a.undecided, b.undecided);
   move_all(a.traced, b.traced);
   move_all(a.traced_across, b.traced_across);
@@ -555,15 +566,36 @@ void append(LeafResult& a, LeafResult&& b) {
 // the number of threads.
 constexpr int kParallelRefineDepth = 5;
 
+// A cell certified in S, with its position against W (in_w: the box test's).
+// Refined cells across W's boundary are small (near the points where the
+// level curve meets W's boundary): smaller than `small_cell`, their area is
+// bounded by a split against W's box test alone (lower: the parts inside W)
+// instead of exact clipping, which would cost more than it gains; the regions
+// take the whole box, clipped to W exactly (the split's hundreds of boxes
+// along W's boundary would only make the Boolean operations slow).
+void add_inside(const WithinTest& within_test, const Box& cell, CellState in_w, double small_cell, LeafResult& r) {
+  r.inside.push_back(cell);
+  if (in_w == CellState::inside) {
+    r.in_lower += box_area(cell);
+    r.inside_kind.push_back(InsideKind::in_w);
+  } else if (cell.width() >= small_cell) {
+    r.inside_kind.push_back(InsideKind::straddle);
+  } else {
+    split_within(within_test, cell, 8, r.in_lower, r.undecided_in);
+    r.inside_kind.push_back(InsideKind::small_split);
+  }
+}
+
 void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, const Box& cell, int depth,
-            int max_depth, double tau, bool trace, Budget& budget, LeafResult& r, bool parallel = false) {
+            int max_depth, double tau, double small_cell, bool trace, Budget& budget, LeafResult& r,
+            bool parallel = false) {
   if (budget.expired()) { r.undecided.push_back(cell); return; }  // valid: undecided is always allowed
   ++r.tests;
   const CellState in_w = within_test(cell);
   if (in_w == CellState::outside) return;  // S ⊆ W
   int active = -1;
   const CellState c = classify(cs, cell, &active);
-  if (c == CellState::inside) { r.inside.push_back(cell); return; }
+  if (c == CellState::inside) { add_inside(within_test, cell, in_w, small_cell, r); return; }
   if (c == CellState::outside) return;
   if (trace && active >= 0) {
     const Constraint& k = cs[static_cast<std::size_t>(active)];
@@ -588,12 +620,12 @@ void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, co
     detail::ParallelPolicy nested;  // the enclosing arena's threads
     nested.serial_threshold = 0;
     detail::for_each_block(nested, kids.size(), kids.size(), [&](std::size_t k) {
-      refine(cs, within_test, kids[k], depth + 1, max_depth, tau, trace, budget, parts[k], true);
+      refine(cs, within_test, kids[k], depth + 1, max_depth, tau, small_cell, trace, budget, parts[k], true);
     });
     for (LeafResult& p : parts) append(r, std::move(p));
     return;
   }
-  for (const Box& k : kids) refine(cs, within_test, k, depth + 1, max_depth, tau, trace, budget, r);
+  for (const Box& k : kids) refine(cs, within_test, k, depth + 1, max_depth, tau, small_cell, trace, budget, r);
 }
 
 // Splits merged runs of the cover back into its leaf cells.
@@ -625,6 +657,7 @@ struct Pass {
   double tau = 0.0;
   std::vector<LeafResult> per_leaf;
   int depth = 0;          // refine depth reached below the cover's leaves
+  double small_cell = 0.0;  // see add_inside
   bool stopped = false;   // the deadline stopped it
 };
 
@@ -653,6 +686,7 @@ Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const W
   }
   pass.tau = tau;
   pass.depth = options.refine_depth;
+  pass.small_cell = co.window.width() / (co.base * std::ldexp(1.0, co.max_depth + 4));
 
   pass.per_leaf.resize(leaves.size());
   detail::ParallelPolicy policy;
@@ -660,7 +694,7 @@ Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const W
   policy.serial_threshold = 8;
   Budget budget(options, leaves.size());
   detail::for_each_block(policy, leaves.size(), leaves.size() * 64, [&](std::size_t k) {
-    refine(cs, within_test, leaves[k], 0, options.refine_depth, tau, options.trace, budget, pass.per_leaf[k],
+    refine(cs, within_test, leaves[k], 0, options.refine_depth, tau, pass.small_cell, options.trace, budget, pass.per_leaf[k],
            detail::effective_threads(policy) > 1);
     budget.leaf_done();
   });
@@ -686,7 +720,7 @@ void deepen(Pass& pass, const std::vector<Constraint>& cs, const WithinTest& wit
   policy.serial_threshold = 8;
   Budget budget(options, cells.size());
   detail::for_each_block(policy, cells.size(), cells.size() * 64, [&](std::size_t i) {
-    refine(cs, within_test, cells[i].second, 0, levels, pass.tau, options.trace, budget, parts[i]);
+    refine(cs, within_test, cells[i].second, 0, levels, pass.tau, pass.small_cell, options.trace, budget, parts[i]);
     budget.leaf_done();
   });
   for (std::size_t i = 0; i < cells.size(); ++i) append(pass.per_leaf[cells[i].first], std::move(parts[i]));
@@ -699,15 +733,11 @@ void deepen(Pass& pass, const std::vector<Constraint>& cs, const WithinTest& wit
 LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTest& within_test,
                          const LevelSetOptions& options, bool regions) {
   LevelSetResult result;
-  const CellOptions& co = pass.co;
   const CellCover& cover_result = pass.cover;
   const std::vector<LeafResult>& per_leaf = pass.per_leaf;
   result.cell_tests = cover_result.tests;
   result.tolerance_per_length = pass.tau;
   result.stopped = pass.stopped;
-  detail::ParallelPolicy policy;
-  policy.threads = options.threads;
-  policy.serial_threshold = 8;
 
   double in_lower = 0.0, traced_lower = 0.0, traced_upper = 0.0, undecided_in = 0.0;
   std::vector<Box> straddle_inside;
@@ -719,17 +749,6 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
   }
   std::vector<Box> inner_steps, outer_steps;
   std::vector<std::vector<Point>> across_inner, across_outer;  // envelope polygons of traced cells across W's boundary
-  const double small_cell = co.window.width() / (co.base * std::ldexp(1.0, co.max_depth + 4));
-  // Refined cells across W's boundary are small (near the points where the
-  // level curve meets W's boundary): counted as undecided (lower 0, upper the
-  // box's area) instead of exact clipping, which would cost more than it gains.
-  // The box tests against W run per leaf in parallel (partial sums added in
-  // leaf order: the same result for any number of threads).
-  enum : char { in_w, straddle, small_split };
-  struct LeafSums {
-    double in_lower = 0.0, undecided_in = 0.0;
-    std::vector<char> kind;  // per inside box
-  };
   // What every traced cell gives, inside W or across its boundary: counts,
   // the regions' boxes and the curve.
   const auto take_trace = [&](const Box& cell, const CellTrace& t) {
@@ -741,34 +760,14 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
     }
     if (t.curve.size() >= 2) result.curves.push_back(t.curve);
   };
-  std::vector<LeafSums> sums(per_leaf.size());
-  detail::for_each_block(policy, per_leaf.size(), per_leaf.size() * 64, [&](std::size_t k) {
-    LeafSums& m = sums[k];
-    m.kind.reserve(per_leaf[k].inside.size());
-    for (const Box& b : per_leaf[k].inside) {
-      if (within_test(b) == CellState::inside) {
-        m.in_lower += box_area(b);
-        m.kind.push_back(in_w);
-      } else if (b.width() >= small_cell) {
-        m.kind.push_back(straddle);
-      } else {
-        // Small and across W's boundary: its area bounds from a split against
-        // W alone (cheap test); the regions take the whole box, clipped to W
-        // exactly below (the split's hundreds of boxes along W's boundary
-        // would only make the Boolean operations slow).
-        split_within(within_test, b, 8, m.in_lower, m.undecided_in);
-        m.kind.push_back(small_split);
-      }
-    }
-  });
   for (std::size_t k = 0; k < per_leaf.size(); ++k) {
     const LeafResult& r = per_leaf[k];
     result.cell_tests += r.tests;
-    in_lower += sums[k].in_lower;
-    undecided_in += sums[k].undecided_in;
+    in_lower += r.in_lower;
+    undecided_in += r.undecided_in;
     for (std::size_t i = 0; i < r.inside.size(); ++i) {
       inside_all.push_back(r.inside[i]);
-      if (sums[k].kind[i] == straddle) straddle_inside.push_back(r.inside[i]);
+      if (r.inside_kind[i] == InsideKind::straddle) straddle_inside.push_back(r.inside[i]);
     }
     for (const Box& b : r.undecided) {
       undecided_all.push_back(b);
