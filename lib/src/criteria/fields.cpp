@@ -111,7 +111,17 @@ std::shared_ptr<const mechanisms::Mechanism> limited_mechanism(const mechanisms:
   return std::make_shared<LimitedMechanism>(file.model, std::move(fields), std::move(singular), singular_distance);
 }
 
-geometry::Region criteria_domain(const mechanisms::Design& file) { return file.model->workspace(); }
+std::optional<CriterionFields::WorkspaceSets> workspace_sets(const mechanisms::Design& file) {
+  const auto fields = file.model->capability<CriterionFields>();
+  return fields ? fields->workspace_sets() : std::nullopt;
+}
+
+bool criteria_domain_exact(const mechanisms::Design& file) { return !workspace_sets(file); }
+
+geometry::Region criteria_domain(const mechanisms::Design& file) {
+  if (workspace_sets(file)) return file.model->workspace_enclosure().outer;
+  return file.model->workspace();
+}
 
 namespace {
 
@@ -163,7 +173,9 @@ LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::ve
   for (const Limit& l : limits) {
     if (l.name == "singularity_distance") (void)detail::singular_field(file);
   }
-  const geometry::Region within = criteria_domain(file);
+  // W exact, or an exact region cut by level sets traced with the criteria's.
+  const std::optional<CriterionFields::WorkspaceSets> sets = workspace_sets(file);
+  const geometry::Region within = sets ? sets->within : criteria_domain(file);
   // Group by surrogate: the stricter level per key.
   std::map<std::string, std::pair<CriterionField, double>> by_key;
   std::optional<double> min_distance;
@@ -186,7 +198,7 @@ LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::ve
   for (const auto& [key, entry] : by_key) {
     if (nowhere.empty()) nowhere = entry.first.nowhere;
   }
-  if (by_key.empty()) {
+  if (by_key.empty() && !sets) {
     out.region = certified::from_exact(within);
   } else if (!nowhere.empty()) {
     out.region = certified::from_exact(geometry::Region{});
@@ -194,6 +206,10 @@ LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::ve
   } else {
     std::vector<certified::Constraint> cs;
     certified::WithinTest within_test;
+    if (sets) {
+      for (const auto& cut : sets->cuts) cs.push_back({cut.field.get(), cut.level});
+      within_test = sets->within_test;
+    }
     for (auto& [key, entry] : by_key) {
       cs.push_back({entry.first.surrogate.get(), entry.second});
       if (!within_test) within_test = entry.first.within_test;  // one mechanism: one workspace test

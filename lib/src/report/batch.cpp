@@ -93,6 +93,7 @@ BatchRow batch_row(const io::MechanismFile& mech) {
   if (result.limited) {
     row.criteria = result.criteria;
     row.reachable_area = criteria::criteria_domain(mech).area();
+    row.reachable_exact = criteria::criteria_domain_exact(mech);
   } else {
     row.components = result.components.size();
   }
@@ -131,7 +132,8 @@ std::string summary_markdown(const BatchReport& report) {
       for (const auto& c : r.criteria) {
         limits += (limits.empty() ? "" : ", ") + criterion_limit_text(c, r.units);
       }
-      note = "limited by " + limits + " (reachable " + format("%.10g", r.reachable_area) + ")";
+      note = "limited by " + limits + " (reachable " + (r.reachable_exact ? "" : "≤ ") +
+             format("%.10g", r.reachable_area) + ")";
     } else if (r.real) {
       note = "real: " + io::interval_text(r.real->lower, r.real->upper, 10) + " (" + r.real->method + ")";
     }

@@ -163,7 +163,8 @@ std::string area_figure(const io::MechanismFile& mech, const AreaReport& result)
     f.region_stroke = "#8a8a8a";
     // A 3-RPR without leg limits ([Briot]'s PAMINSA) has the plane as its workspace: the file's analysis window.
     const std::string domain = mech.model->workspace_label();
-    f.region_legend = domain + " (" + format_g10(reachable.area()) + " " + unit + ")";
+    f.region_legend = domain + (criteria::criteria_domain_exact(mech) ? " (" : " (outer enclosure, ") +
+                      format_g10(reachable.area()) + " " + unit + ")";
     io::FigureOptions::Overlay limited;
     limited.rings = io::traced_inner_rings(result.limited->detail);
     limited.fill = "#f4a3a3";

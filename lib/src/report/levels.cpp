@@ -67,15 +67,30 @@ LevelsReport levels(const io::MechanismFile& mech, const LevelsOptions& options)
   }
   // A criterion infinite everywhere has empty sub-level sets: nothing to refine.
   run.note = fields.front().nowhere;
-  const geometry::Region ws = run.note.empty() ? mech.model->workspace() : geometry::Region{};
+  // W exact, or an exact region cut by level sets traced with the criterion's.
+  const auto sets = criteria::workspace_sets(mech);
+  const geometry::Region ws =
+      !run.note.empty() ? geometry::Region{} : sets ? sets->within : mech.model->workspace();
+  const certified::WithinTest within_test = sets ? sets->within_test : fields.front().within_test;
+  std::vector<certified::Constraint> cuts;
+  if (sets) {
+    for (const auto& cut : sets->cuts) cuts.push_back({cut.field.get(), cut.level});
+  }
   certified::LevelSetOptions o;
   o.relative_tolerance = options.tolerance;
+  if (sets && run.note.empty()) {
+    const auto w = certified::sublevel_set(cuts, ws, within_test, options.budget.apply(o, "workspace"));
+    run.workspace_area_lower = w.region.area_lower;
+    run.workspace_area_upper = w.region.area_upper;
+    run.stopped = w.stopped;
+  } else {
+    run.workspace_area_lower = run.workspace_area_upper = ws.area();
+  }
   for (std::size_t k = 0; k < levels.size(); ++k) {
-    std::vector<certified::Constraint> cs;
+    std::vector<certified::Constraint> cs = cuts;
     for (const auto& f : fields) cs.push_back({f.surrogate.get(), f.level(levels[k])});
     const std::string stage = "level " + std::to_string(k + 1) + " of " + std::to_string(levels.size());
-    run.sublevel_sets.push_back(
-        certified::sublevel_set(cs, ws, fields.front().within_test, options.budget.apply(o, stage)));
+    run.sublevel_sets.push_back(certified::sublevel_set(cs, ws, within_test, options.budget.apply(o, stage)));
     run.stopped = run.stopped || run.sublevel_sets.back().stopped;
   }
   if (run.stopped) run.stopped_note = options.budget.stopped_note;
@@ -139,7 +154,7 @@ std::string to_text(const LevelsReport& run) {
 // the axes, scale bar, legend (every band with its certified area bounds) and
 // caption of the workspace figures.
 std::string band_figure(const io::MechanismFile& mech, const LevelsReport& run) {
-  const geometry::Region ws = mech.model->workspace();
+  const geometry::Region ws = criteria::criteria_domain(mech);  // drawn: W, or its outer enclosure
   const std::string unit = area_unit(mech);
   const std::string crit_unit = run.field.unit == "deg" ? "\u00b0" : (run.field.unit.empty() ? "" : " " + run.field.unit);
   const std::size_t n = run.levels.size();
@@ -148,9 +163,8 @@ std::string band_figure(const io::MechanismFile& mech, const LevelsReport& run) 
   f.region_fill = kAboveColour;
   f.region_stroke = "#555555";
   // The band above the highest level: the workspace minus the highest sub-level set.
-  const double total = ws.area();
-  const double above_lo = std::max(0.0, total - run.sublevel_sets[n - 1].region.area_upper);
-  const double above_hi = std::max(0.0, total - run.sublevel_sets[n - 1].region.area_lower);
+  const double above_lo = std::max(0.0, run.workspace_area_lower - run.sublevel_sets[n - 1].region.area_upper);
+  const double above_hi = std::max(0.0, run.workspace_area_upper - run.sublevel_sets[n - 1].region.area_lower);
   f.region_legend = "> " + num(run.levels[n - 1]) + crit_unit + ": " + io::interval_text(above_lo, above_hi) + " " + unit;
   // Legend: the bands in increasing order of the criterion, then the mechanism.
   f.region_legend_rank = -100 + static_cast<int>(n);

@@ -1,12 +1,16 @@
 // Certified sub-level sets of the biglide velocity ratio V_i/V_y = |∂q_i/∂y|
 // ([Strutynskyi] fig. 8), condition number, pressure angle and reaction over
-// the exact simplified-scheme workspace.
+// the exact simplified-scheme workspace, and the real scheme's workspace and
+// criteria, whose boundary is traced too.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <functional>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/mechanism_file.hpp"
@@ -123,11 +127,13 @@ TEST(BiglideConditionNumber, SurrogateAgreesWithTheEvaluationAndBoundsAGrid) {
   EXPECT_NEAR(grid, 0.5 * (r.region.area_lower + r.region.area_upper), 3e-3 * grid);
 }
 
-TEST(BiglideVelocityRatio, TheRealSchemeAndAReactionWithoutLoadAreRefusedClearly) {
+TEST(BiglideVelocityRatio, TheRealSchemesRodAnglesAndAReactionWithoutLoadAreRefusedClearly) {
   const auto real = io::load_mechanism(dataset("biglide_real"));
-  for (const char* name : {"velocity_ratio", "pressure_angle", "condition_number"}) {
+  for (const char* name : {"pressure_angle", "reaction"}) {
     EXPECT_THROW(criteria::fields_for(real, name), io::InputError) << name;
   }
+  EXPECT_EQ(criteria::fields_for(real, "velocity_ratio").size(), 2u);
+  EXPECT_EQ(criteria::fields_for(real, "condition_number").size(), 1u);
   EXPECT_THROW(criteria::fields_for(simplified(), "reaction"), io::InputError);  // no criteria.load
   // The 3-RPR without leg limits or an analysis window has no bounded region.
   const auto paminsa = io::load_mechanism(dataset("three_rpr_paminsa"));
@@ -206,6 +212,64 @@ TEST(BiglidePressureAngle, CertifiedBoundsContainAGridAndTheReactionGivesTheSame
   const auto rr = criteria::limited_workspace(with_load, {{"reaction", r_max}}, o);
   EXPECT_LE(rr.region.area_lower, r.region.area_upper);
   EXPECT_GE(rr.region.area_upper, r.region.area_lower);
+}
+
+}  // namespace
+
+namespace {
+
+// The real scheme's workspace is leg 1's band cut by leg 2's chain, three
+// traced level sets (CriterionFields::workspace_sets). Its area with no
+// criterion against the quadtree enclosure the mechanism gives (an
+// independent cell test of the same conditions) and a grid of reachable().
+TEST(BiglideRealScheme, WorkspaceCutByTheChainAgainstTheQuadtreeEnclosureAndAGrid) {
+  const auto real = io::load_mechanism(dataset("biglide_real"));
+  certified::LevelSetOptions o;
+  o.relative_tolerance = 1e-7;
+  const auto w = criteria::limited_workspace(real, {}, o);
+  const auto enclosure = real.model->workspace_enclosure(9);
+  const double lo = w.region.area_lower, hi = w.region.area_upper;
+  std::printf("[ real W   ] traced [%.10g, %.10g] (width %.1e), quadtree [%.10g, %.10g] (width %.1e)\n", lo, hi,
+              (hi - lo) / hi, enclosure.area_lower, enclosure.area_upper,
+              (enclosure.area_upper - enclosure.area_lower) / enclosure.area_upper);
+  EXPECT_LE(hi - lo, 1e-6 * hi);
+  EXPECT_GE(lo, enclosure.area_lower);  // both enclose the area: the traced interval lies in the wide one
+  EXPECT_LE(hi, enclosure.area_upper);
+  const auto box = real.model->bounds();
+  const double grid = test::grid_area(box, 800, [&](Point p) { return real.model->reachable({p.x, p.y, 0.0}); });
+  EXPECT_NEAR(grid, 0.5 * (lo + hi), 2e-3 * grid);
+}
+
+// A velocity-ratio and a condition-number limit on the real scheme: inside
+// the workspace's bounds above, binding, and against a grid of the fields'
+// values (Biglide::velocity_ratio_y and the SVD of the inverse Jacobian).
+TEST(BiglideRealScheme, CriteriaLimitsAgainstAGridOfTheEvaluation) {
+  const auto real = io::load_mechanism(dataset("biglide_real"));
+  const auto& m = *real.model;
+  const auto box = m.bounds();
+  certified::LevelSetOptions o;
+  o.relative_tolerance = 1e-6;
+  const double w_upper = criteria::limited_workspace(real, {}, o).region.area_upper;
+  const auto vr = criteria::fields_for(real, "velocity_ratio");
+  const auto kc = criteria::fields_for(real, "condition_number").at(0);
+  struct Case {
+    criteria::Limit limit;
+    std::function<bool(Point)> holds;
+  };
+  const std::vector<Case> cases = {
+      {{"velocity_ratio", 1.5}, [&](Point p) { return vr[0].value(p) <= 1.5 && vr[1].value(p) <= 1.5; }},
+      {{"condition_number", 2.5}, [&](Point p) { return kc.value(p) <= 2.5; }}};
+  for (const Case& c : cases) {
+    const auto r = criteria::limited_workspace(real, {c.limit}, o);
+    const double lo = r.region.area_lower, hi = r.region.area_upper;
+    const double grid = test::grid_area(box, 800, [&](Point p) { return m.reachable({p.x, p.y, 0.0}) && c.holds(p); });
+    std::printf("[ %s ] [%.10g, %.10g] (width %.1e), grid %.10g, W <= %.10g\n", c.limit.name.c_str(), lo, hi,
+                (hi - lo) / hi, grid, w_upper);
+    EXPECT_LE(hi - lo, 1e-5 * hi) << c.limit.name;
+    EXPECT_LT(hi, 0.95 * w_upper) << c.limit.name;  // the limit binds
+    EXPECT_GT(lo, 0.05 * w_upper) << c.limit.name;
+    EXPECT_NEAR(grid, 0.5 * (lo + hi), 3e-3 * grid) << c.limit.name;
+  }
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -79,6 +80,22 @@ struct CriterionFields {
   /// Throws std::invalid_argument with a one-line reason when this mechanism
   /// cannot give it (the default).
   virtual CriterionField singular_determinant(const mechanisms::Criteria& criteria) const;
+  /// A workspace W not bounded by arcs and segments only (the real-scheme
+  /// biglide: a coupler curve, docs/theory/biglide.md) as an exact region cut
+  /// by sub-level sets of smooth fields, W = within ∩ ⋂_k { F_k <= level_k }:
+  /// their level curves are traced with the criteria's, so that a limited
+  /// workspace is certified against W itself. `within_test` classifies boxes
+  /// against W. Absent (the default): W is the exact Mechanism::workspace().
+  struct WorkspaceCut {
+    std::shared_ptr<const certified::ScalarField> field;
+    double level = 0.0;
+  };
+  struct WorkspaceSets {
+    geometry::Region within;
+    certified::WithinTest within_test;
+    std::vector<WorkspaceCut> cuts;
+  };
+  virtual std::optional<WorkspaceSets> workspace_sets() const { return std::nullopt; }
 };
 
 /// The fields of a criterion for a design (a mechanism file is one), one per limited leg (their
@@ -126,7 +143,15 @@ LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::ve
 /// is delegated; workspace() throws (that region is certified, not exact).
 std::shared_ptr<const mechanisms::Mechanism> limited_mechanism(const mechanisms::Design& file);
 
-/// The exact workspace the criteria are restricted to (Mechanism::workspace()).
+/// The workspace the criteria are restricted to: Mechanism::workspace(), or
+/// for a workspace cut by level sets (CriterionFields::workspace_sets) the
+/// outer enclosure Mechanism::workspace_enclosure() gives (for figures and
+/// tables; limited_workspace certifies against W itself).
 geometry::Region criteria_domain(const mechanisms::Design& file);
+/// False when criteria_domain is an outer enclosure (a workspace cut by level sets).
+bool criteria_domain_exact(const mechanisms::Design& file);
+/// The mechanism's workspace cut by level sets (CriterionFields::workspace_sets),
+/// or nothing when its workspace is exact.
+std::optional<CriterionFields::WorkspaceSets> workspace_sets(const mechanisms::Design& file);
 
 }  // namespace pkmws::criteria

@@ -35,6 +35,7 @@ struct BatchRow {
   std::string method;
   std::vector<CriterionLimit> criteria;  // criteria-limited files
   double reachable_area = 0.0;           // criteria-limited files: the workspace without the limits
+  bool reachable_exact = true;           // false: reachable_area is an outer enclosure's (an upper bound)
   /// Components; none for a criteria-limited workspace (not enumerated, with the reason).
   std::optional<std::size_t> components;
   /// Files with bodies: the real workspace's certified area.

@@ -35,6 +35,10 @@ struct LevelsReport {
   std::vector<certified::Band> bands;
   /// The sub-level set {criterion <= levels[k]} behind each band (area bounds, traced pieces).
   std::vector<certified::LevelSetResult> sublevel_sets;
+  /// The workspace's area bounds (equal when it is exact; a workspace cut by
+  /// level sets is certified at the same tolerance): the band above the
+  /// highest level is the workspace minus the highest sub-level set.
+  double workspace_area_lower = 0.0, workspace_area_upper = 0.0;
   /// Cut short by the budget's deadline (the bounds are valid but wider): its note.
   bool stopped = false;
   std::string stopped_note;

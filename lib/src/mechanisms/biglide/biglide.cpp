@@ -372,6 +372,11 @@ geometry::Region Biglide::workspace() const {
   return ws;
 }
 
+geometry::Region Biglide::tool_band() const {
+  const auto& s = params_.strokes[0];
+  return geometry::band(slider(0, s[0]), 0.0, s[1] - s[0], tool_distance(), -paper_branch);
+}
+
 certified::CertifiedRegion Biglide::workspace_enclosure(int max_depth) const {
   if (!real_scheme()) return certified::from_exact(workspace());
   using I = boost::numeric::interval<double>;
@@ -384,7 +389,7 @@ certified::CertifiedRegion Biglide::workspace_enclosure(int max_depth) const {
   const double k = params_.rods[0] / l3, c = std::cos(gamma()), s = std::sin(gamma());
   const double m00 = k * c, m01 = -k * s, m10 = k * s, m11 = k * c;
   // Leg 1 exactly: T within l_3 of slider 1, ahead of it (the paper's branch).
-  const geometry::Region band1 = geometry::band(slider(0, st1[0]), 0.0, st1[1] - st1[0], l3, -paper_branch);
+  const geometry::Region band1 = tool_band();
   // The cell test: for every T in the box, is the chain closed with q_2 in its
   // stroke? (Leg 1's own conditions are exact in band1; they are re-checked
   // here only to bound w1.)

@@ -58,6 +58,11 @@ class Biglide final : public Mechanism {
   /// γ: angle at S_1 between S_1 J and S_1 T, cos γ = (l_1² + l_3² - l_4²) / (2 l_1 l_3); 0 when simplified.
   double gamma() const;
   Point slider(int i, double q) const;
+  /// Leg 1 alone, exactly: the tool within l_3 of slider 1 and ahead of it
+  /// (the paper's branch) over slider 1's stroke. The workspace of the
+  /// simplified scheme is this band intersected with leg 2's; the real
+  /// scheme's is this band cut by leg 2's chain (a coupler curve).
+  geometry::Region tool_band() const;
 
   /// Joint J of a pose: J = S_1 + (l_1 / l_3) R(γ) (T - S_1) (the triangle is rigid).
   Point joint_of(Point tool, double q1) const;

@@ -122,6 +122,38 @@ struct BiglideRods {
   CellState within(const Box& b) const { return legs.within(b); }
 };
 
+// The real scheme's leg 2 as fields over the tool position T = (x, y)
+// (docs/theory/biglide.md): its chain closes where h_2² <= l_2², and slider 2
+// stands at q_2 = J_x + b_2 w_2 (the cell test's BiglideVelocityRatio::within),
+// which must lie in its stroke. With leg 1 exact (Biglide::tool_band), these
+// three sub-level sets cut the workspace out of the band.
+struct BiglideChain {
+  enum class What { h2sq, q2, minus_q2 };
+  BiglideVelocityRatio legs;
+  What what = What::q2;
+  template <class T> T eval(const T& x, const T& y) const {
+    using certified::max;
+    using certified::sqr;
+    using certified::sqrt;
+    using std::sqrt;
+    const auto p = legs.parts(x, y);
+    if (what == What::h2sq) return sqr(p.h2);
+    constexpr double b1 = BiglideVelocityRatio::b1, b2 = BiglideVelocityRatio::b2;
+    const T w1 = sqrt(max(p.w1sq, 0.0));
+    const T jx = x + T(b1 * (1.0 - legs.m00)) * w1 + T(legs.m01) * p.h1;
+    const T q2 = jx + T(b2) * sqrt(max(p.w2sq, 0.0));
+    return what == What::q2 ? q2 : -q2;
+  }
+  // h_2² is smooth where leg 1 is off its type-1 singularity (w_1 > 0); q_2
+  // also needs w_2 > 0 (leg 2's).
+  CellState domain(const Box& box) const {
+    if (what != What::h2sq) return legs.domain(box);
+    const auto p = legs.parts(Interval(box.min.x, box.max.x), Interval(box.min.y, box.max.y));
+    if (p.w1sq.hi <= 0.0) return CellState::outside;
+    return p.w1sq.lo > 0.0 ? CellState::inside : CellState::undecided;
+  }
+};
+
 }  // namespace
 
 CriterionField biglide_pressure_angle(const mechanisms::Biglide& mechanism) {
@@ -180,18 +212,34 @@ class BiglideFields final : public CriterionFields {
   explicit BiglideFields(const mechanisms::Biglide* m) : m_(m) {}
   std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& criteria,
                                      const std::vector<int>& /*reaction_legs*/) const override {
-    if (m_->real_scheme()) {
-      throw std::invalid_argument("biglide level sets need the exact workspace of the simplified scheme; the real "
-                                  "scheme's workspace is itself certified (coupler-curve boundary), and its criteria "
-                                  "are given at a pose by pkmws eval");
-    }
     if (name == "condition_number") return {biglide_condition_number(*m_)};
     if (name == "velocity_ratio") return {biglide_velocity_ratio(*m_, 0), biglide_velocity_ratio(*m_, 1)};
+    if (m_->real_scheme()) {
+      throw std::invalid_argument("the real-scheme biglide's rods do not meet at the tool (it sits on link 1's "
+                                  "triangle), so " + name + " as the angle between two-force rods is defined for "
+                                  "the simplified scheme only; velocity_ratio and condition_number hold for both");
+    }
     if (name == "reaction") {
       if (!criteria.load) throw std::invalid_argument("the reaction criterion needs criteria.load");
       return {biglide_reaction(*m_, criteria.load->force_N)};
     }
     return {biglide_pressure_angle(*m_)};
+  }
+  // The real scheme: leg 1's band cut by leg 2's chain (BiglideChain).
+  std::optional<WorkspaceSets> workspace_sets() const override {
+    if (!m_->real_scheme()) return std::nullopt;
+    const BiglideVelocityRatio legs(*m_, 1);
+    const auto& stroke = m_->params().strokes[1];
+    const double l2 = m_->params().rods[1];
+    const auto cut = [&](BiglideChain::What what, double level) {
+      return WorkspaceCut{std::make_shared<certified::TemplateField<BiglideChain>>(BiglideChain{legs, what}), level};
+    };
+    WorkspaceSets sets;
+    sets.within = m_->tool_band();
+    sets.within_test = [legs](const Box& b) { return legs.within(b); };
+    sets.cuts = {cut(BiglideChain::What::h2sq, l2 * l2), cut(BiglideChain::What::q2, stroke[1]),
+                 cut(BiglideChain::What::minus_q2, -stroke[0])};
+    return sets;
   }
   CriterionField singular_determinant(const mechanisms::Criteria& /*criteria*/) const override {
     if (m_->real_scheme()) {
