@@ -358,7 +358,7 @@ geometry::Region Biglide::workspace() const {
         "biglide (real scheme): the tool workspace is not bounded by arcs and segments only: where "
         "slider 2 stops at a stroke end and slider 1 moves, the tool traces a coupler curve of the "
         "slider-crank formed by rod 2 and the tool triangle (a quartic, neither circle nor line; "
-        "docs/theory/biglide.md); it needs the certified level-set machinery (later issue)");
+        "docs/theory/biglide.md); its area is certified (workspace_enclosure), and criteria trace it as level sets");
   }
   geometry::Region ws;
   for (int i = 0; i < 2; ++i) {
