@@ -306,7 +306,8 @@ def test_certified_workspaces():
     inner, outer = real.workspace(bound="inner"), real.workspace(bound="outer")
     lo, hi = real.workspace_area_bounds()
     assert inner.area <= lo <= hi <= outer.area * (1 + 1e-12)
-    assert 1056543.0 <= hi and lo <= 1057141.7  # README's certified bounds
+    assert 1056958.5 <= hi and lo <= 1056959.2  # README's certified bounds
+    assert hi - lo <= 1e-6 * hi  # the coupler curves traced, not a quadtree
 
 
 def test_limited_area_matches_cli():

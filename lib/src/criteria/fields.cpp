@@ -118,6 +118,14 @@ std::optional<CriterionFields::WorkspaceSets> workspace_sets(const mechanisms::D
 
 bool criteria_domain_exact(const mechanisms::Design& file) { return !workspace_sets(file); }
 
+certified::CertifiedRegion workspace_enclosure(const mechanisms::Design& file, double relative_tolerance) {
+  if (!workspace_sets(file)) return file.model->workspace_enclosure();
+  certified::LevelSetOptions o;
+  o.relative_tolerance = relative_tolerance;
+  o.build_regions = true;
+  return limited_workspace(file, {}, o).region;
+}
+
 geometry::Region criteria_domain(const mechanisms::Design& file) {
   if (workspace_sets(file)) return file.model->workspace_enclosure().outer;
   return file.model->workspace();

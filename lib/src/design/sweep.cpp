@@ -391,7 +391,7 @@ DesignRow evaluate_design(const SweepSpec& spec, std::size_t index, const std::v
     return finish("invalid", e.what());
   }
   try {
-    const certified::CertifiedRegion enclosure = file.model->workspace_enclosure();
+    const certified::CertifiedRegion enclosure = criteria::workspace_enclosure(file);
     if (enclosure.inner.empty() && enclosure.outer.empty()) return finish("empty", "the workspace is empty");
     // Exact: the region. Certified: areas of the enclosure, shapes inside its inner region.
     const geometry::Region& inside = enclosure.inner;

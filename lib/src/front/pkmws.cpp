@@ -25,7 +25,7 @@ certified::CertifiedRegion limited(const MechanismFile& file, double relative_to
 
 certified::CertifiedRegion workspace(const MechanismFile& file) {
   try {
-    return file.model->workspace_enclosure();
+    return criteria::workspace_enclosure(file);  // a coupler-curve boundary traced (the real-scheme biglide)
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {

@@ -153,5 +153,9 @@ bool criteria_domain_exact(const mechanisms::Design& file);
 /// The mechanism's workspace cut by level sets (CriterionFields::workspace_sets),
 /// or nothing when its workspace is exact.
 std::optional<CriterionFields::WorkspaceSets> workspace_sets(const mechanisms::Design& file);
+/// The workspace as an enclosure: for a workspace cut by level sets, the
+/// traced sets at `relative_tolerance` (regions built at cell resolution),
+/// else Mechanism::workspace_enclosure() (exact where it can be).
+certified::CertifiedRegion workspace_enclosure(const mechanisms::Design& file, double relative_tolerance = 1e-6);
 
 }  // namespace pkmws::criteria
