@@ -728,10 +728,9 @@ void deepen(Pass& pass, const std::vector<Constraint>& cs, const WithinTest& wit
   pass.stopped = pass.stopped || budget.stopped();
 }
 
-// The bounds (and, with `regions`, the inner/outer regions) of a pass. The
-// pass is not changed: a retry may refine it further and summarise it again.
-LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTest& within_test,
-                         const LevelSetOptions& options, bool regions) {
+// The bounds, pieces and curves of a pass. The pass is not changed: a retry
+// may refine it further and summarise it again.
+LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTest& within_test) {
   LevelSetResult result;
   const CellCover& cover_result = pass.cover;
   const std::vector<LeafResult>& per_leaf = pass.per_leaf;
@@ -747,17 +746,11 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
     if (within_test(b) == CellState::inside) in_lower += box_area(b);
     else straddle_inside.push_back(b);
   }
-  std::vector<Box> inner_steps, outer_steps;
   std::vector<std::vector<Point>> across_inner, across_outer;  // envelope polygons of traced cells across W's boundary
-  // What every traced cell gives, inside W or across its boundary: counts,
-  // the regions' boxes and the curve.
-  const auto take_trace = [&](const Box& cell, const CellTrace& t) {
+  // What every traced cell gives, inside W or across its boundary: counts and the curve.
+  const auto take_trace = [&](const CellTrace& t) {
     ++result.traced_cells;
     result.curve_points += t.points;
-    if (regions) {
-      step_boxes(t, cell, true, inner_steps);
-      step_boxes(t, cell, false, outer_steps);
-    }
     if (t.curve.size() >= 2) result.curves.push_back(t.curve);
   };
   for (std::size_t k = 0; k < per_leaf.size(); ++k) {
@@ -778,12 +771,12 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
       traced_lower += t.lower;
       traced_upper += t.upper;
       envelope_polygons(t, cell, t.sgn < 0, result.inner_polygons);  // below env_lo, or above env_hi
-      take_trace(cell, t);
+      take_trace(t);
     }
     for (const auto& [cell, t] : r.traced_across) {  // bounded below by clipping to W exactly
       envelope_polygons(t, cell, t.sgn < 0, across_inner);
       envelope_polygons(t, cell, t.sgn > 0, across_outer);
-      take_trace(cell, t);
+      take_trace(t);
     }
   }
   // Cells across W's boundary: exact region operations. A traced cell's part
@@ -811,26 +804,33 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
   result.undecided_area = undecided_in;
   result.traced_width = traced_upper - traced_lower;
   result.region.exact = false;
-  // Past the deadline the exact regions (seconds to minutes of Boolean
-  // operations on many boxes) are not started either.
-  if (regions && std::chrono::steady_clock::now() >= options.deadline) result.stopped = true;
-  if (regions && !result.stopped) {  // stopped: too many cells to be worth it
-    // Exact regions from boxes: each traced cell contributes the box below
-    // (inner) / around (outer) its envelopes, so area(inner) <= area_lower
-    // and area(outer) >= area_upper (the bounds use the envelopes themselves).
-    std::vector<Box> in_boxes = inside_all;
-    in_boxes.insert(in_boxes.end(), inner_steps.begin(), inner_steps.end());
-    Region inner = within.intersect(boxes_region(in_boxes));
-    std::vector<Box> out_boxes = inside_all;
-    out_boxes.insert(out_boxes.end(), outer_steps.begin(), outer_steps.end());
-    out_boxes.insert(out_boxes.end(), undecided_all.begin(), undecided_all.end());
-    Region outer = within.intersect(boxes_region(out_boxes));
-    result.region.inner = std::move(inner);
-    result.region.outer = std::move(outer);
-  }
   result.inside_boxes = std::move(inside_all);
   result.undecided_boxes = std::move(undecided_all);
   return result;
+}
+
+// The exact inner/outer regions of the pass `result` summarises (asked with
+// build_regions; built once, for the final pass): from boxes, each traced cell
+// contributing the box below (inner) / around (outer) its envelopes, so
+// area(inner) <= area_lower and area(outer) >= area_upper (the bounds use the
+// envelopes themselves).
+void add_regions(const Pass& pass, const Region& within, const LevelSetOptions& options, LevelSetResult& result) {
+  // Past the deadline the exact regions (seconds to minutes of Boolean
+  // operations on many boxes) are not started either.
+  if (std::chrono::steady_clock::now() >= options.deadline) result.stopped = true;
+  if (result.stopped) return;  // stopped: too many cells to be worth it
+  std::vector<Box> in_boxes = result.inside_boxes, out_boxes = result.inside_boxes;
+  for (const LeafResult& r : pass.per_leaf) {
+    for (const auto* traced : {&r.traced, &r.traced_across}) {
+      for (const auto& [cell, t] : *traced) {
+        step_boxes(t, cell, true, in_boxes);
+        step_boxes(t, cell, false, out_boxes);
+      }
+    }
+  }
+  out_boxes.insert(out_boxes.end(), result.undecided_boxes.begin(), result.undecided_boxes.end());
+  result.region.inner = within.intersect(boxes_region(in_boxes));
+  result.region.outer = within.intersect(boxes_region(out_boxes));
 }
 
 }  // namespace
@@ -847,10 +847,11 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
   }
   // The regions (costly) only for the final pass: the retries need the bounds.
   const auto final_result = [&](const Pass& pass, LevelSetResult&& bounds) {
-    return options.build_regions ? summarize(pass, within, within_test, options, true) : std::move(bounds);
+    if (options.build_regions) add_regions(pass, within, options, bounds);
+    return std::move(bounds);
   };
   Pass pass = first_pass(constraints, within, within_test, options, 0.0);
-  LevelSetResult r = summarize(pass, within, within_test, options, false);
+  LevelSetResult r = summarize(pass, within, within_test);
   // Retries (not when the deadline stopped the first run: a retry would stop
   // too). When the traced cells dominate the width (the estimate of area or
   // curve length was off), one rerun with a tighter τ. When the undecided
@@ -869,7 +870,7 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
   if (r.traced_width > 0.5 * width) {
     const double tau = r.tolerance_per_length * 0.5 * target() / width;
     const Pass again = first_pass(constraints, within, within_test, options, tau);
-    return final_result(again, summarize(again, within, within_test, options, false));
+    return final_result(again, summarize(again, within, within_test));
   }
   const int max_depth = std::min(40, options.refine_depth + 4);
   while (!r.stopped && pass.depth < max_depth && r.region.area_upper - r.region.area_lower > target()) {
@@ -877,7 +878,7 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
     const double need = room > 0.0 ? 1.25 * r.undecided_area / room : 16.0;
     const int levels = std::clamp(static_cast<int>(std::ceil(std::log2(std::max(need, 2.0)))), 1, max_depth - pass.depth);
     deepen(pass, constraints, within_test, options, levels);
-    r = summarize(pass, within, within_test, options, false);
+    r = summarize(pass, within, within_test);
   }
   return final_result(pass, std::move(r));
 }
