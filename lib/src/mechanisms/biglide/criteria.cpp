@@ -67,18 +67,25 @@ struct BiglideVelocityRatio {
     if (p.w1sq.hi <= 0.0 || p.w2sq.hi <= 0.0) return CellState::outside;
     return p.w1sq.lo > 0.0 && p.w2sq.lo > 0.0 ? CellState::inside : CellState::undecided;
   }
+  // Slider 2's position q_2 = J_x + b_2 w_2 for the tool at (x, y), J_x = x +
+  // b_1 w_1 (1 - M00) + M01 h_1 (J = S_1 + M (T - S_1), S_1 = (x + b_1 w_1, -B)).
+  template <class T> T slider2(const T& x, const Parts<T>& p) const {
+    using certified::max;
+    using certified::sqrt;
+    using std::sqrt;
+    const T w1 = sqrt(max(p.w1sq, 0.0));
+    const T jx = x + T(b1 * (1.0 - m00)) * w1 + T(m01) * p.h1;
+    return jx + T(b2) * sqrt(max(p.w2sq, 0.0));
+  }
   // Box ⊆ workspace: the chain closes with both sliders inside their strokes.
   CellState within(const Box& box) const {
     using certified::max;
-    using certified::sqr;
     using certified::sqrt;
     const Interval x(box.min.x, box.max.x), y(box.min.y, box.max.y);
     const Parts<Interval> p = parts(x, y);
     if (p.w1sq.hi < 0.0 || p.w2sq.hi < 0.0) return CellState::outside;
-    const Interval w1 = sqrt(max(p.w1sq, 0.0));
-    const Interval q1 = x + Interval(b1) * w1;
-    const Interval jx = x + Interval(b1 * (1.0 - m00)) * w1 + Interval(m01) * p.h1;
-    const Interval q2 = jx + Interval(b2) * sqrt(max(p.w2sq, 0.0));
+    const Interval q1 = x + Interval(b1) * sqrt(max(p.w1sq, 0.0));
+    const Interval q2 = slider2(x, p);
     if (q1.hi < stroke[0][0] || q1.lo > stroke[0][1] || q2.hi < stroke[1][0] || q2.lo > stroke[1][1])
       return CellState::outside;
     const bool inside = p.w1sq.lo > 0.0 && p.w2sq.lo > 0.0 && q1.lo >= stroke[0][0] && q1.hi <= stroke[0][1] &&
@@ -124,7 +131,7 @@ struct BiglideRods {
 
 // The real scheme's leg 2 as fields over the tool position T = (x, y)
 // (docs/theory/biglide.md): its chain closes where h_2² <= l_2², and slider 2
-// stands at q_2 = J_x + b_2 w_2 (the cell test's BiglideVelocityRatio::within),
+// stands at q_2 = J_x + b_2 w_2 (BiglideVelocityRatio::slider2, as in its cell test),
 // which must lie in its stroke. With leg 1 exact (Biglide::tool_band), these
 // three sub-level sets cut the workspace out of the band.
 struct BiglideChain {
@@ -132,16 +139,9 @@ struct BiglideChain {
   BiglideVelocityRatio legs;
   What what = What::q2;
   template <class T> T eval(const T& x, const T& y) const {
-    using certified::max;
-    using certified::sqr;
-    using certified::sqrt;
-    using std::sqrt;
     const auto p = legs.parts(x, y);
-    if (what == What::h2sq) return sqr(p.h2);
-    constexpr double b1 = BiglideVelocityRatio::b1, b2 = BiglideVelocityRatio::b2;
-    const T w1 = sqrt(max(p.w1sq, 0.0));
-    const T jx = x + T(b1 * (1.0 - legs.m00)) * w1 + T(legs.m01) * p.h1;
-    const T q2 = jx + T(b2) * sqrt(max(p.w2sq, 0.0));
+    if (what == What::h2sq) return certified::sqr(p.h2);
+    const T q2 = legs.slider2(x, p);
     return what == What::q2 ? q2 : -q2;
   }
   // h_2² is smooth where leg 1 is off its type-1 singularity (w_1 > 0); q_2
