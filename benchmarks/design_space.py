@@ -402,9 +402,15 @@ FINDINGS = [
     "its own `pthread_once`, which calls the kernel only when a thread waits: the area + circle sweep above "
     "went from 1 010 to 2 290 designs/s on one thread (`pkmws sweep --threads 1`), rows byte-identical.",
     "* Rank 0's communication thread waited in `MPI_Probe`, which spins in Open MPI: with two ranks on two "
-    "cores it took half of the core rank 0 evaluates on. It now polls with `MPI_Iprobe` and sleeps, and a "
-    "worker asks ahead only for designs under 20 ms: 8 GCI designs on 2 ranks took 4.3 s before and 1.9 s "
-    "after this change alone, 0.8 s with the first one too.",
+    "cores it took half of the core rank 0 evaluates on. It then polled with `MPI_Iprobe` and slept: 8 GCI "
+    "designs on 2 ranks took 4.3 s before and 1.9 s after this change alone, 0.8 s with the first one too.",
+    "* Two MPI ranks still reached only 1.47–1.55× one process on the GCI sweep where two independent shard "
+    "processes reached 1.91–2.03× (alternated runs, 2026-12-02): every design cost 17–127 % more inside a rank. "
+    "Open MPI starts threads in every rank, and in a process that has ever had a second thread CGAL counts "
+    "references atomically and keeps its lazy DAGs (`CGAL::is_currently_single_threaded`) and glibc's malloc "
+    "locks; a serial sweep with one idle thread started at start-up ran 15–40 % slower. Each rank now forks, "
+    "before `MPI_Init`, a single-threaded child that evaluates its designs, and takes designs from a shared "
+    "atomic counter (`MPI_Fetch_and_op`) instead of asking rank 0: 2 ranks 1.91–2.03×, rows byte-identical.",
     "* The inscribed circle computed every arc's start angle (`atan2`) at each distance and crossing test; "
     "now once per search, and arcs whose circle is farther than the current distance are skipped: 30 % fewer "
     "instructions per design, radii bit-identical.", ""]
@@ -532,9 +538,7 @@ def markdown(res, args):
                           f"ranks migrate between the cores (`--bind-to none`) and share the slower one; two "
                           f"shard processes reach the sum only in rounds where the slower core recovers.")
         elif r2 < 0.9 * shards:
-            lines[-1] += (f" Two ranks ({r2 / r1:.2f}×) also fell short of the two shard processes in this run; "
-                          f"where the difference goes was not established (rank 0 runs two threads, a worker's "
-                          f"MPI calls spin while it waits for an answer).")
+            lines[-1] += (f" Two ranks ({r2 / r1:.2f}×) also fell short of the two shard processes in this run.")
         lines.append("")
     lines += FINDINGS
     return "\n".join(lines)

@@ -83,6 +83,7 @@ void add_sweep(CLI::App& app, std::vector<Command>& commands) {
     std::string spec, out, json, shard;
     std::vector<std::string> merge;
     int threads = 0;
+    RankZero rank0 = RankZero::automatic;
     bool resume = false, no_timing = false;
   };
   auto a = std::make_shared<Args>();
@@ -90,6 +91,13 @@ void add_sweep(CLI::App& app, std::vector<Command>& commands) {
   sub->add_option("-o,--out", a->out, "Output CSV (one row per design, ordered by index)")->required();
   sub->add_option("--json", a->json, "Also write the rows as JSON");
   sub->add_option("--threads", a->threads, "Threads (0: all cores, 1: serial)")->check(CLI::Range(0, 1024));
+  sub->add_option("--mpi-rank0", a->rank0,
+                  "Under mpirun: whether rank 0 evaluates designs besides collecting rows (auto: when all "
+                  "ranks share one machine)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, RankZero>{
+              {"auto", RankZero::automatic}, {"evaluate", RankZero::evaluates}, {"collect", RankZero::collects}},
+          CLI::ignore_case));
   sub->add_option("--shard", a->shard, "Evaluate only designs with index % N == i (i/N), for job arrays");
   sub->add_flag("--resume", a->resume, "Continue an interrupted sweep from OUT.partial");
   sub->add_flag("--no-timing", a->no_timing, "Leave out the time_ms column (outputs compare byte for byte)");
@@ -105,10 +113,10 @@ void add_sweep(CLI::App& app, std::vector<Command>& commands) {
       return 0;
     }
     if (a->spec.empty()) throw io::InputError("sweep: SPEC (a sweep file) or --merge is required");
-    MpiSweep mpi;
+    MpiSweep mpi(a->spec);
     if (mpi.rank() != 0) {  // an MPI worker: rank 0 checks everything and writes everything
       if (!mpi.wait_release()) return 0;
-      mpi.serve(design::load_sweep(a->spec));
+      mpi.serve();
       return 0;
     }
     check_writable_dir(out);
@@ -151,7 +159,7 @@ void add_sweep(CLI::App& app, std::vector<Command>& commands) {
         progress.step();
       };
       mpi.release(true);
-      rows = mpi.size() > 1 ? mpi.run(spec, todo, done) : design::run_sweep(spec, todo, a->threads, done);
+      rows = mpi.size() > 1 ? mpi.run(spec, todo, a->rank0, done) : design::run_sweep(spec, todo, a->threads, done);
     }
     report::SweepReport result;
     result.spec = spec;

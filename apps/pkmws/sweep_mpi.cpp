@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
-#include <mutex>
 #include <string>
 #include <thread>
 
@@ -11,6 +10,15 @@
 
 #ifdef PKMWS_WITH_MPI
 #include <mpi.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <optional>
 #endif
 
 namespace pkmws::cli {
@@ -26,28 +34,15 @@ int launcher_size() {
 }
 
 #ifdef PKMWS_WITH_MPI
-constexpr int kReady = 1;  // worker -> rank 0: a request, with the previous row (CSV line) or ""
-constexpr int kWork = 2;   // rank 0 -> worker: a design index
-constexpr int kStop = 3;   // rank 0 -> worker: no more designs
-constexpr int kDone = 4;   // worker -> rank 0: every request answered, the worker leaves
-// A worker's open requests: one while it evaluates (the row it sends asks for
-// the next design), so that no design waits in its hands while another rank
-// is idle at the end of a sweep of costly designs. After a design that took
-// less than kQuickMs it opens up to kMaxOpen, so that designs under a
-// millisecond do not wait for rank 0's answer.
-constexpr int kMaxOpen = 3;
-constexpr double kQuickMs = 20.0;
+constexpr int kRow = 1;   // worker -> rank 0: a finished design's row (a CSV line)
+constexpr int kDone = 4;  // worker -> rank 0: the counter ran out, the worker leaves
 
 // Waits for a message without spinning. Open MPI's blocking calls (MPI_Probe,
-// MPI_Recv) busy-poll: rank 0's communication thread would take a whole core
-// from the evaluation threads (three busy threads on two cores for two
-// ranks). Polls with MPI_Iprobe, sleeping 10 us after the first miss and
-// twice as long after each further one, at most 1 ms: an answer is late by
-// less than the time already waited and at most 1 ms (open requests hide it
-// for quick designs), and a waiting rank 0 wakes 1 000 times a second. (At
-// 250 us it woke 4 000 times a second; each wake-up takes a core from an
-// evaluating thread for a context switch, about 36 us on a paravirtualised
-// machine: a tenth of a core.)
+// MPI_Recv) busy-poll: a waiting rank 0 would take a core from the evaluating
+// ranks (oversubscribed runs, or rank 0 sharing a machine with workers).
+// Polls with MPI_Iprobe, sleeping 10 us after the first miss and twice as
+// long after each further one, at most 1 ms; each poll also lets MPI serve the
+// counter's window where the network has no remote atomics.
 MPI_Status wait_message(int source, int tag) {
   MPI_Status status;
   auto pause = std::chrono::microseconds(10);
@@ -60,30 +55,106 @@ MPI_Status wait_message(int source, int tag) {
   }
 }
 
-// Receives the pending request (a row, or "" for a first request) that
-// `status` describes.
-std::string receive_request(const MPI_Status& status) {
+// Receives the pending row that `status` describes.
+std::string receive_row(const MPI_Status& status) {
   int length = 0;
   MPI_Get_count(&status, MPI_CHAR, &length);
   std::string line(static_cast<std::size_t>(length), '\0');
-  MPI_Recv(line.data(), length, MPI_CHAR, status.MPI_SOURCE, kReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  MPI_Recv(line.data(), length, MPI_CHAR, status.MPI_SOURCE, kRow, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
   return line;
 }
 
-std::vector<std::size_t>::size_type next_index(std::mutex& m, std::size_t& position, std::size_t end) {
-  const std::lock_guard<std::mutex> lock(m);
-  return position < end ? position++ : end;
+// Whole reads and writes on a pipe (false: the other end is closed).
+bool read_all(int fd, void* data, std::size_t n) {
+  auto* p = static_cast<char*>(data);
+  while (n > 0) {
+    const ssize_t got = ::read(fd, p, n);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) return false;
+    p += got;
+    n -= static_cast<std::size_t>(got);
+  }
+  return true;
+}
+
+bool write_all(int fd, const void* data, std::size_t n) {
+  const auto* p = static_cast<const char*>(data);
+  while (n > 0) {
+    const ssize_t put = ::write(fd, p, n);
+    if (put < 0 && errno == EINTR) continue;
+    if (put <= 0) return false;
+    p += put;
+    n -= static_cast<std::size_t>(put);
+  }
+  return true;
+}
+
+// The evaluating child: reads design indices, answers each with "r" and the
+// row's CSV line (or "e" and the error), until its parent closes the pipe.
+// Loads the sweep file at the first index (rank 0 has checked it by then).
+[[noreturn]] void evaluator(const std::string& spec_path, pid_t parent, int in, int out) {
+  prctl(PR_SET_PDEATHSIG, SIGKILL);  // ends with its rank, however the rank ends
+  if (getppid() != parent) _exit(0);
+  std::optional<design::SweepSpec> spec;
+  for (;;) {
+    std::uint64_t index = 0;
+    if (!read_all(in, &index, sizeof index)) _exit(0);
+    std::string reply;
+    try {
+      if (!spec) spec = design::load_sweep(spec_path);
+      reply = "r" + design::csv_line(design::evaluate_design(*spec, static_cast<std::size_t>(index)), true);
+    } catch (const std::exception& e) {
+      reply = std::string("e") + e.what();
+    }
+    const std::uint64_t n = reply.size();
+    if (!write_all(out, &n, sizeof n) || !write_all(out, reply.data(), reply.size())) _exit(0);
+  }
+}
+
+// Do all ranks share one machine (one shared-memory domain)?
+bool one_machine() {
+  MPI_Comm node;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int node_size = 0, world_size = 0;
+  MPI_Comm_size(node, &node_size);
+  MPI_Comm_size(MPI_COMM_WORLD, &world_size);
+  MPI_Comm_free(&node);
+  return node_size == world_size;
 }
 #endif
 
 }  // namespace
 
-MpiSweep::MpiSweep() {
+struct MpiSweep::Window {
+#ifdef PKMWS_WITH_MPI
+  MPI_Win win = MPI_WIN_NULL;
+#endif
+};
+
+MpiSweep::MpiSweep(std::string spec_path) : spec_path_(std::move(spec_path)) {
   const int launched = launcher_size();
 #ifdef PKMWS_WITH_MPI
   if (launched > 1) {
+    // The evaluating child, forked while this process has one thread.
+    int down[2], up[2];
+    if (pipe(down) != 0 || pipe(up) != 0) throw std::runtime_error("sweep: cannot create a pipe for the evaluator");
+    std::fflush(nullptr);
+    const pid_t parent = getpid();
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("sweep: cannot start the evaluating process (fork failed)");
+    if (pid == 0) {
+      close(down[1]);
+      close(up[0]);
+      evaluator(spec_path_, parent, down[0], up[1]);
+    }
+    close(down[0]);
+    close(up[1]);
+    child_ = pid;
+    to_child_ = down[1];
+    from_child_ = up[0];
+    signal(SIGPIPE, SIG_IGN);  // a child that died is an error from write(), not the end of this rank
     int provided = 0;
-    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SINGLE, &provided);
     started_ = true;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
@@ -104,6 +175,30 @@ MpiSweep::~MpiSweep() {
     else stop_workers();
   }
   MPI_Finalize();
+  close(to_child_);  // the child leaves at the end of its input
+  close(from_child_);
+  waitpid(child_, nullptr, 0);
+#endif
+}
+
+std::string MpiSweep::evaluate(std::size_t index) {
+#ifdef PKMWS_WITH_MPI
+  const std::uint64_t i = index;
+  std::uint64_t n = 0;
+  std::string reply;
+  bool ok = write_all(to_child_, &i, sizeof i) && read_all(from_child_, &n, sizeof n);
+  if (ok) {
+    reply.resize(static_cast<std::size_t>(n));
+    ok = read_all(from_child_, reply.data(), reply.size());
+  }
+  if (!ok || reply.empty()) {
+    throw std::runtime_error("sweep: rank " + std::to_string(rank_) + "'s evaluating process ended unexpectedly");
+  }
+  if (reply[0] != 'r') throw std::runtime_error("sweep: rank " + std::to_string(rank_) + ": " + reply.substr(1));
+  return reply.substr(1);
+#else
+  (void)index;
+  return {};
 #endif
 }
 
@@ -129,117 +224,138 @@ bool MpiSweep::wait_release() {
 #endif
 }
 
+// Collective: every rank learns the list of designs and whether all ranks
+// share a machine, and the counter (one integer on rank 0, starting at 0) is
+// opened for passive-target access.
+void MpiSweep::open_counter() {
+#ifdef PKMWS_WITH_MPI
+  one_machine_ = one_machine();
+  unsigned long long n = todo_.size();
+  MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+  todo_.resize(static_cast<std::size_t>(n));
+  MPI_Bcast(todo_.data(), static_cast<int>(n), MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+  window_ = std::make_unique<Window>();
+  void* base = nullptr;
+  const MPI_Aint bytes = rank_ == 0 ? static_cast<MPI_Aint>(sizeof(unsigned long long)) : 0;
+  MPI_Win_allocate(bytes, sizeof(unsigned long long), MPI_INFO_NULL, MPI_COMM_WORLD, &base, &window_->win);
+  MPI_Win_fence(0, window_->win);
+  if (rank_ == 0) *static_cast<unsigned long long*>(base) = 0;
+  MPI_Win_fence(0, window_->win);
+  MPI_Win_lock_all(MPI_MODE_NOCHECK, window_->win);
+#endif
+}
+
+// The next position in the list to evaluate, or the list's size when none is left.
+std::size_t MpiSweep::take() {
+#ifdef PKMWS_WITH_MPI
+  const unsigned long long one = 1;
+  unsigned long long position = 0;
+  MPI_Fetch_and_op(&one, &position, MPI_UNSIGNED_LONG_LONG, 0, 0, MPI_SUM, window_->win);
+  MPI_Win_flush(0, window_->win);
+  return static_cast<std::size_t>(std::min<unsigned long long>(position, todo_.size()));
+#else
+  return todo_.size();
+#endif
+}
+
+// Rank 0 failed after the release: the counter is moved past the end, so
+// every worker stops after the design in its hands; waits until all have.
 void MpiSweep::stop_workers() {
 #ifdef PKMWS_WITH_MPI
   if (workers_stopped_) return;
   workers_stopped_ = true;
-  // Answer every worker's open requests with "stop" until it leaves (rank 0
-  // failed early, or no designs are left); a worker busy with a design asks
-  // once it is done.
-  left_.resize(static_cast<std::size_t>(size_), 0);
-  for (int w = 1; w < size_; ++w) {
-    while (!left_[static_cast<std::size_t>(w)]) {
-      const MPI_Status status = wait_message(w, MPI_ANY_TAG);
-      if (status.MPI_TAG == kDone) {
-        MPI_Recv(nullptr, 0, MPI_CHAR, w, kDone, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        left_[static_cast<std::size_t>(w)] = 1;
-      } else {
-        (void)receive_request(status);
-        MPI_Send(nullptr, 0, MPI_CHAR, w, kStop, MPI_COMM_WORLD);
-      }
+  if (!window_) {
+    todo_.clear();  // the workers wait for the list: an empty one
+    open_counter();
+  } else {
+    const unsigned long long end = todo_.size();
+    unsigned long long old = 0;
+    MPI_Fetch_and_op(&end, &old, MPI_UNSIGNED_LONG_LONG, 0, 0, MPI_REPLACE, window_->win);
+    MPI_Win_flush(0, window_->win);
+  }
+  while (workers_left_ < size_ - 1) {
+    const MPI_Status status = wait_message(MPI_ANY_SOURCE, MPI_ANY_TAG);
+    if (status.MPI_TAG == kDone) {
+      MPI_Recv(nullptr, 0, MPI_CHAR, status.MPI_SOURCE, kDone, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      ++workers_left_;
+    } else {
+      (void)receive_row(status);
     }
   }
+  MPI_Win_unlock_all(window_->win);
+  MPI_Win_free(&window_->win);
 #endif
 }
 
 std::vector<design::DesignRow> MpiSweep::run(const design::SweepSpec& spec, const std::vector<std::size_t>& todo,
-                                             const std::function<void(const design::DesignRow&)>& done) {
+                                             RankZero role, const std::function<void(const design::DesignRow&)>& done) {
   std::vector<design::DesignRow> rows;
 #ifdef PKMWS_WITH_MPI
-  std::mutex m;
-  std::size_t position = 0;
+  todo_.assign(todo.begin(), todo.end());
+  open_counter();
+  const bool evaluates = role == RankZero::evaluates || (role == RankZero::automatic && one_machine_);
   const auto finished = [&](design::DesignRow row) {
-    const std::lock_guard<std::mutex> lock(m);
     if (done) done(row);
     rows.push_back(std::move(row));
   };
-  // Rank 0 evaluates too, on a thread of its own; this thread talks to the workers.
-  std::thread local([&] {
-    for (;;) {
-      const std::size_t k = next_index(m, position, todo.size());
-      if (k == todo.size()) return;
-      finished(design::evaluate_design(spec, todo[k]));
-    }
-  });
   const std::size_t parameters = spec.parameters.size(), metrics = design::metric_columns(spec).size();
-  left_.assign(static_cast<std::size_t>(size_), 0);
-  int active = size_ - 1;  // workers that have not left
-  while (active > 0) {
-    const MPI_Status status = wait_message(MPI_ANY_SOURCE, MPI_ANY_TAG);
+  const auto handle = [&](const MPI_Status& status) {
     if (status.MPI_TAG == kDone) {
       MPI_Recv(nullptr, 0, MPI_CHAR, status.MPI_SOURCE, kDone, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-      left_[static_cast<std::size_t>(status.MPI_SOURCE)] = 1;
-      --active;
-      continue;
+      ++workers_left_;
+      return;
     }
-    const std::string line = receive_request(status);
-    if (!line.empty()) {
-      auto row = design::parse_csv_line(line, parameters, metrics, true);
-      if (!row) {
-        MPI_Send(nullptr, 0, MPI_CHAR, status.MPI_SOURCE, kStop, MPI_COMM_WORLD);  // answered: no deadlock
-        {
-          const std::lock_guard<std::mutex> lock(m);
-          position = todo.size();  // the local thread stops after its design
-        }
-        local.join();
-        throw std::runtime_error("sweep: rank " + std::to_string(status.MPI_SOURCE) + " sent a malformed row");
+    auto row = design::parse_csv_line(receive_row(status), parameters, metrics, true);
+    if (!row) throw std::runtime_error("sweep: rank " + std::to_string(status.MPI_SOURCE) + " sent a malformed row");
+    finished(std::move(*row));
+  };
+  if (evaluates) {
+    for (;;) {
+      // The rows that arrived while this rank evaluated, then its next design.
+      for (;;) {
+        int flag = 0;
+        MPI_Status status;
+        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
+        if (!flag) break;
+        handle(status);
       }
+      const std::size_t k = take();
+      if (k == todo_.size()) break;
+      auto row = design::parse_csv_line(evaluate(static_cast<std::size_t>(todo_[k])), parameters, metrics, true);
+      if (!row) throw std::runtime_error("sweep: rank 0's evaluating process sent a malformed row");
       finished(std::move(*row));
     }
-    const std::size_t k = next_index(m, position, todo.size());
-    if (k == todo.size()) {
-      MPI_Send(nullptr, 0, MPI_CHAR, status.MPI_SOURCE, kStop, MPI_COMM_WORLD);
-    } else {
-      const unsigned long long index = todo[k];
-      MPI_Send(&index, 1, MPI_UNSIGNED_LONG_LONG, status.MPI_SOURCE, kWork, MPI_COMM_WORLD);
-    }
   }
+  while (workers_left_ < size_ - 1) handle(wait_message(MPI_ANY_SOURCE, MPI_ANY_TAG));
   workers_stopped_ = true;
-  local.join();
+  MPI_Win_unlock_all(window_->win);
+  MPI_Win_free(&window_->win);
 #else
   (void)spec;
   (void)todo;
+  (void)role;
   (void)done;
 #endif
   return rows;
 }
 
-void MpiSweep::serve(const design::SweepSpec& spec) {
+void MpiSweep::serve() {
 #ifdef PKMWS_WITH_MPI
-  // Every request is answered by a design index or "stop" (only stops once
-  // the designs run out); the worker leaves when all its requests are.
-  MPI_Send(nullptr, 0, MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
-  bool stopped = false;
-  for (int open = 1; open > 0;) {
-    MPI_Status status;
-    unsigned long long index = 0;
-    MPI_Recv(&index, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
-    --open;
-    if (status.MPI_TAG == kStop) {
-      stopped = true;
-      continue;
-    }
-    const design::DesignRow row = design::evaluate_design(spec, static_cast<std::size_t>(index));
-    const std::string line = design::csv_line(row, true);
-    MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
-    ++open;
-    for (; !stopped && row.time_ms < kQuickMs && open < kMaxOpen; ++open) {
-      MPI_Send(nullptr, 0, MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
-    }
+  open_counter();
+  std::string line;
+  MPI_Request sent = MPI_REQUEST_NULL;
+  for (;;) {
+    const std::size_t k = take();
+    if (k == todo_.size()) break;
+    std::string next = evaluate(static_cast<std::size_t>(todo_[k]));
+    MPI_Wait(&sent, MPI_STATUS_IGNORE);  // the previous row is out (small rows go at once)
+    line = std::move(next);
+    MPI_Isend(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0, kRow, MPI_COMM_WORLD, &sent);
   }
+  MPI_Wait(&sent, MPI_STATUS_IGNORE);
   MPI_Send(nullptr, 0, MPI_CHAR, 0, kDone, MPI_COMM_WORLD);
-#else
-  (void)spec;
+  MPI_Win_unlock_all(window_->win);
+  MPI_Win_free(&window_->win);
 #endif
 }
 

@@ -6,6 +6,8 @@ import pathlib
 import subprocess
 import sys
 
+import pytest
+
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
 from conftest import CLI, SOURCE_DIR, run  # noqa: E402
 
@@ -33,11 +35,13 @@ def spec_file(tmp_path, metrics=("area", "components", "inscribed_rectangle")):
     return p
 
 
-def test_three_ranks_write_the_serial_file(tmp_path):
+@pytest.mark.parametrize("rank0", ["auto", "evaluate", "collect"])
+def test_three_ranks_write_the_serial_file(tmp_path, rank0):
     spec = spec_file(tmp_path)
     serial, distributed = tmp_path / "serial.csv", tmp_path / "mpi.csv"
     run("sweep", spec, "-o", serial, "--threads", "1", "--no-timing")
-    r = mpirun(3, "sweep", spec, "-o", distributed, "--no-timing", "--json", tmp_path / "mpi.json")
+    r = mpirun(3, "sweep", spec, "-o", distributed, "--no-timing", "--json", tmp_path / "mpi.json",
+               "--mpi-rank0", rank0)
     assert r.returncode == 0, r.stderr
     assert distributed.read_bytes() == serial.read_bytes()
     assert r.stdout.count("designs (") == 1  # only rank 0 reports
