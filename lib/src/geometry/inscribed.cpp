@@ -12,27 +12,31 @@ namespace pkmws::geometry {
 
 namespace {
 
-// Polar angle of an arc's start about its centre.
-double start_angle(const Curve& c) { return std::atan2(c.source.y - c.center.y, c.source.x - c.center.x); }
-
-// Is the polar angle `a` (about the arc's centre) within the sweep `s` of an
-// arc that starts at the angle `a0`?
-bool within_sweep_angle(double a0, double s, double a) {
-  double rel = std::remainder(a - a0, 2.0 * std::numbers::pi);  // [-pi, pi]
-  if (s > 0 && rel < 0) rel += 2.0 * std::numbers::pi;
-  if (s < 0 && rel > 0) rel -= 2.0 * std::numbers::pi;
-  return std::abs(rel) <= std::abs(s);
-}
-
-// A boundary curve with its start angle, computed once for the many points a
-// search asks about (arcs; unused for segments).
+// A boundary curve, with what the many point queries of a search need of an
+// arc computed once: its end directions from the centre, ordered
+// counter-clockwise (a cw arc from S to T is the ccw arc from T to S), and
+// whether it spans more than a half turn. Unused for segments.
 struct Piece {
   const Curve* curve;
-  double a0, sweep;
+  Point from, to;  // ccw: the arc covers the directions from `from` to `to`
+  bool major = false;
 };
 
 Piece piece(const Curve& c) {
-  return c.kind == Curve::Kind::arc ? Piece{&c, start_angle(c), c.sweep()} : Piece{&c, 0.0, 0.0};
+  if (c.kind != Curve::Kind::arc) return Piece{&c, {}, {}, false};
+  const Point s = c.source - c.center, t = c.target - c.center;
+  const double sweep = c.sweep();
+  return sweep >= 0 ? Piece{&c, s, t, sweep > std::numbers::pi} : Piece{&c, t, s, -sweep > std::numbers::pi};
+}
+
+// Is the direction v (from the arc's centre) within the arc's span? Within
+// a half turn or less: v is ccw of `from` and cw of `to`; beyond a half turn:
+// v is not strictly inside the complementary span (from `to` to `from`),
+// which is less than a half turn. Cross products instead of polar angles
+// (atan2 and a remainder were 14 % of a sweep of inscribed circles).
+bool within_span(const Piece& k, Point v) {
+  if (!k.major) return cross(k.from, v) >= 0.0 && cross(v, k.to) >= 0.0;
+  return !(cross(k.to, v) > 0.0 && cross(v, k.from) > 0.0);
 }
 
 // Crossings of the ray {(x, p.y + delta) : x > p.x}, delta an infinitesimal
@@ -52,9 +56,11 @@ int crossings(const Piece& k, Point p) {
   for (int side : {-1, 1}) {
     const double x = c.center.x + side * h;
     if (x <= p.x) continue;
-    // Moving up along the circle turns the angle ccw on the right half, cw on the left.
-    const double a = std::atan2(dy, side * h) + side * 1e-9;
-    if (within_sweep_angle(k.a0, k.sweep, a)) ++n;
+    // The crossing moved up along the circle by a turn of 1e-9: ccw on the
+    // right half (tangent (-dy, h)), cw on the left (tangent (dy, h)).
+    const Point v{side * h, dy};
+    const Point up{-side * dy, h};
+    if (within_span(k, v + 1e-9 * up)) ++n;
   }
   return n;
 }
@@ -68,9 +74,7 @@ double distance(const Piece& k, Point p) {
     t = std::clamp(t, 0.0, 1.0);
     return norm(p - (c.source + t * d));
   }
-  if (within_sweep_angle(k.a0, k.sweep, std::atan2(p.y - c.center.y, p.x - c.center.x))) {
-    return std::abs(norm(p - c.center) - c.radius);
-  }
+  if (within_span(k, p - c.center)) return std::abs(norm(p - c.center) - c.radius);
   return std::min(norm(p - c.source), norm(p - c.target));
 }
 
