@@ -42,7 +42,8 @@ Region make_region(std::vector<PolygonWithHoles> pieces);
 /// Region bounded by one closed ccw loop of curves (segments and arcs).
 Region region_from_loop(const std::vector<Curve>& loop);
 
-/// Exact double value of a one-root number: forces the exact value first
+/// A one-root number as a double within 2^-51 of its magnitude (a few ulp):
+/// from the lazy interval when it is that tight, else from the exact value
 /// (to_double on a lazy number only guarantees ~1e-5, docs/theory/regions.md).
 double to_double_exact(const CoordNT& value);
 double to_double_exact(const FT& value);

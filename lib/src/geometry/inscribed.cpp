@@ -65,6 +65,10 @@ int crossings(const Piece& k, Point p) {
   return n;
 }
 
+// |v| without std::hypot's guard against overflow (coordinates are lengths of
+// a machine, far from it): hypot was 4 % of an area + circle sweep.
+double length(Point v) { return std::sqrt(v.x * v.x + v.y * v.y); }
+
 double distance(const Piece& k, Point p) {
   const Curve& c = *k.curve;
   if (c.kind == Curve::Kind::segment) {
@@ -72,10 +76,10 @@ double distance(const Piece& k, Point p) {
     const double len2 = dot(d, d);
     double t = len2 > 0 ? dot(p - c.source, d) / len2 : 0.0;
     t = std::clamp(t, 0.0, 1.0);
-    return norm(p - (c.source + t * d));
+    return length(p - (c.source + t * d));
   }
-  if (within_span(k, p - c.center)) return std::abs(norm(p - c.center) - c.radius);
-  return std::min(norm(p - c.source), norm(p - c.target));
+  if (within_span(k, p - c.center)) return std::abs(length(p - c.center) - c.radius);
+  return std::min(length(p - c.source), length(p - c.target));
 }
 
 std::vector<Piece> pieces(const Component& component) {
