@@ -181,12 +181,22 @@ MpiSweep::~MpiSweep() {
 #endif
 }
 
-std::string MpiSweep::evaluate(std::size_t index) {
+void MpiSweep::ask_child(std::size_t index) {
 #ifdef PKMWS_WITH_MPI
   const std::uint64_t i = index;
+  if (!write_all(to_child_, &i, sizeof i)) {
+    throw std::runtime_error("sweep: rank " + std::to_string(rank_) + "'s evaluating process ended unexpectedly");
+  }
+#else
+  (void)index;
+#endif
+}
+
+std::string MpiSweep::child_row() {
+#ifdef PKMWS_WITH_MPI
   std::uint64_t n = 0;
   std::string reply;
-  bool ok = write_all(to_child_, &i, sizeof i) && read_all(from_child_, &n, sizeof n);
+  bool ok = read_all(from_child_, &n, sizeof n);
   if (ok) {
     reply.resize(static_cast<std::size_t>(n));
     ok = read_all(from_child_, reply.data(), reply.size());
@@ -197,9 +207,33 @@ std::string MpiSweep::evaluate(std::size_t index) {
   if (reply[0] != 'r') throw std::runtime_error("sweep: rank " + std::to_string(rank_) + ": " + reply.substr(1));
   return reply.substr(1);
 #else
-  (void)index;
   return {};
 #endif
+}
+
+// Evaluates designs from the counter until none is left. Positions are taken
+// in chunks: one design at first, then as many as make about 2 ms of work at
+// the rate just measured (at most 64), and never more than a quarter of an
+// even share of what is left, so that cheap designs do not pay a counter
+// access and a pipe round trip each (about 0.1 ms) while costly ones are
+// still taken one by one and the last ones spread over the ranks. The child
+// gets a chunk's indices at once and answers them in order. `between` runs
+// before each chunk; `row` gets each finished row.
+void MpiSweep::evaluate_all(const std::function<void()>& between, const std::function<void(std::string)>& row) {
+  std::size_t count = 1;
+  for (;;) {
+    between();
+    const auto [first, last] = take(count);
+    if (first == last) return;
+    const auto start = std::chrono::steady_clock::now();
+    for (std::size_t p = first; p < last; ++p) ask_child(static_cast<std::size_t>(todo_[p]));
+    for (std::size_t p = first; p < last; ++p) row(child_row());
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
+        static_cast<double>(last - first);
+    const double share = static_cast<double>(todo_.size() - last) / (4.0 * size_);
+    count = static_cast<std::size_t>(std::clamp(std::min(2.0 / std::max(ms, 1e-3), share), 1.0, 64.0));
+  }
 }
 
 void MpiSweep::release(bool ok) {
@@ -245,16 +279,19 @@ void MpiSweep::open_counter() {
 #endif
 }
 
-// The next position in the list to evaluate, or the list's size when none is left.
-std::size_t MpiSweep::take() {
+// The next `count` positions in the list to evaluate, [first, last), fewer
+// at its end; empty when none is left.
+std::pair<std::size_t, std::size_t> MpiSweep::take(std::size_t count) {
 #ifdef PKMWS_WITH_MPI
-  const unsigned long long one = 1;
+  const unsigned long long add = count;
   unsigned long long position = 0;
-  MPI_Fetch_and_op(&one, &position, MPI_UNSIGNED_LONG_LONG, 0, 0, MPI_SUM, window_->win);
+  MPI_Fetch_and_op(&add, &position, MPI_UNSIGNED_LONG_LONG, 0, 0, MPI_SUM, window_->win);
   MPI_Win_flush(0, window_->win);
-  return static_cast<std::size_t>(std::min<unsigned long long>(position, todo_.size()));
+  const unsigned long long n = todo_.size();
+  return {static_cast<std::size_t>(std::min(position, n)), static_cast<std::size_t>(std::min(position + add, n))};
 #else
-  return todo_.size();
+  (void)count;
+  return {todo_.size(), todo_.size()};
 #endif
 }
 
@@ -310,21 +347,21 @@ std::vector<design::DesignRow> MpiSweep::run(const design::SweepSpec& spec, cons
     finished(std::move(*row));
   };
   if (evaluates) {
-    for (;;) {
-      // The rows that arrived while this rank evaluated, then its next design.
-      for (;;) {
-        int flag = 0;
-        MPI_Status status;
-        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
-        if (!flag) break;
-        handle(status);
-      }
-      const std::size_t k = take();
-      if (k == todo_.size()) break;
-      auto row = design::parse_csv_line(evaluate(static_cast<std::size_t>(todo_[k])), parameters, metrics, true);
-      if (!row) throw std::runtime_error("sweep: rank 0's evaluating process sent a malformed row");
-      finished(std::move(*row));
-    }
+    evaluate_all(
+        [&] {  // the rows that arrived while this rank evaluated
+          for (;;) {
+            int flag = 0;
+            MPI_Status status;
+            MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
+            if (!flag) break;
+            handle(status);
+          }
+        },
+        [&](const std::string& line) {
+          auto row = design::parse_csv_line(line, parameters, metrics, true);
+          if (!row) throw std::runtime_error("sweep: rank 0's evaluating process sent a malformed row");
+          finished(std::move(*row));
+        });
   }
   while (workers_left_ < size_ - 1) handle(wait_message(MPI_ANY_SOURCE, MPI_ANY_TAG));
   workers_stopped_ = true;
@@ -342,17 +379,10 @@ std::vector<design::DesignRow> MpiSweep::run(const design::SweepSpec& spec, cons
 void MpiSweep::serve() {
 #ifdef PKMWS_WITH_MPI
   open_counter();
-  std::string line;
-  MPI_Request sent = MPI_REQUEST_NULL;
-  for (;;) {
-    const std::size_t k = take();
-    if (k == todo_.size()) break;
-    std::string next = evaluate(static_cast<std::size_t>(todo_[k]));
-    MPI_Wait(&sent, MPI_STATUS_IGNORE);  // the previous row is out (small rows go at once)
-    line = std::move(next);
-    MPI_Isend(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0, kRow, MPI_COMM_WORLD, &sent);
-  }
-  MPI_Wait(&sent, MPI_STATUS_IGNORE);
+  // Rows are small (eager: MPI_Send returns at once); rank 0 collects them between its designs.
+  evaluate_all([] {}, [](const std::string& line) {
+    MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0, kRow, MPI_COMM_WORLD);
+  });
   MPI_Send(nullptr, 0, MPI_CHAR, 0, kDone, MPI_COMM_WORLD);
   MPI_Win_unlock_all(window_->win);
   MPI_Win_free(&window_->win);

@@ -22,6 +22,8 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "pkmws/design/sweep.hpp"
@@ -59,8 +61,10 @@ class MpiSweep {
 
  private:
   void open_counter();
-  std::size_t take();
-  std::string evaluate(std::size_t index);  // the design's CSV row, from the child process
+  std::pair<std::size_t, std::size_t> take(std::size_t count);
+  void ask_child(std::size_t index);  // the child evaluates this design next
+  std::string child_row();            // the next row the child finished (a CSV line)
+  void evaluate_all(const std::function<void()>& between, const std::function<void(std::string)>& row);
   void stop_workers();
   int rank_ = 0;
   int size_ = 1;
