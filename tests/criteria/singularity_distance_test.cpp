@@ -1,7 +1,8 @@
 // The distance to the type-2 singularity as a criterion (min_singularity_distance,
 // docs/theory/level_sets.md): the certified bounds of W ∩ {d >= δ} against
 // closed forms (PAMINSA's singular circle, a biglide whose rods align on a
-// horizontal line) and against an independent sampling of S (bisection of a
+// horizontal line), the real-scheme biglide against finite differences of its
+// inverse kinematics, and against an independent sampling of S (bisection of a
 // determinant written here from the poses, on grid lines) with brute-force
 // distances (DexTAR, a random five-bar, PAMINSA at 25°, a random 3-RPR); the
 // enclosure inner ⊆ outer with area(inner) <= lower <= upper <= area(outer);
@@ -130,6 +131,107 @@ TEST(SingularityDistance, BiglideAlignmentLineAgainstTheExactStadium) {
   // The traced chords lie on the line (within their bound).
   for (const auto& c : lw.singular_curves) {
     for (const Point& p : c) EXPECT_NEAR(p.y, ystar, lw.singular_error + 1e-9);
+  }
+}
+
+// The real-scheme biglide (tool on link 1's triangle) with unequal rods, so
+// that rod 2 can align with rod 1 inside the workspace. Its singular
+// determinant (BiglideRealSingular) against det(dq/dP) by central finite
+// differences of the module's inverse kinematics (paper's branch): the same
+// sign wherever the difference quotient is clear of zero, and the same zeros
+// along vertical lines.
+// J's singular locus is a horizontal line and T = S_1 + M (J - S_1) turns it
+// into one, y = y*; the certified W ∩ {d >= 20} must contain an 800² grid
+// estimate of it (reachable points at least 20 from that segment of the line).
+TEST(SingularityDistance, RealBiglideAgainstFiniteDifferencesOfItsInverseKinematics) {
+  Json doc = dataset_json("biglide_real");
+  doc["rods"] = {2000.0, 300.0};
+  doc["stroke"] = {{0.0, 2500.0}, {0.0, 2500.0}};
+  doc["tool"] = {{"l3", 1950.0}, {"l4", 100.0}};
+  const double delta = 20.0;
+  doc["criteria"] = {{"min_singularity_distance", delta}};
+  const io::MechanismFile f = from_json(doc);
+  const auto fields = f.model->capability<criteria::CriterionFields>();
+  ASSERT_TRUE(fields);
+  const criteria::CriterionField det = fields->singular_determinant(f.criteria);
+  const auto q = [&](double x, double y) {
+    const auto s = f.model->inverse({x, y, 0.0});
+    return s.front().joints;
+  };
+  const auto fd_det = [&](double x, double y) {  // det(dq/dP), h = 1e-4 mm
+    const double h = 1e-4;
+    const auto qxp = q(x + h, y), qxm = q(x - h, y), qyp = q(x, y + h), qym = q(x, y - h);
+    if (qxp.size() != 2 || qxm.size() != 2 || qyp.size() != 2 || qym.size() != 2) return std::nan("");
+    const double a = (qxp[0] - qxm[0]) / (2 * h), b = (qyp[0] - qym[0]) / (2 * h);
+    const double c = (qxp[1] - qxm[1]) / (2 * h), d = (qyp[1] - qym[1]) / (2 * h);
+    return a * d - b * c;
+  };
+  const geometry::Box box = f.model->bounds();
+  std::vector<double> zeros;
+  int compared = 0, positive = 0;
+  for (int i = 1; i < 40; ++i) {
+    const double x = box.min.x + box.width() * i / 40.0;
+    std::vector<double> ys;
+    for (int j = 0; j <= 400; ++j) ys.push_back(box.min.y + box.height() * j / 400.0);
+    for (std::size_t j = 0; j + 1 < ys.size(); ++j) {
+      if (!f.model->reachable({x, ys[j], 0.0}) || !f.model->reachable({x, ys[j + 1], 0.0})) continue;
+      const double g0 = det.value({x, ys[j]}), g1 = det.value({x, ys[j + 1]});
+      const double r0 = fd_det(x, ys[j]);
+      if (std::abs(r0) > 1e-6) {
+        ++compared;
+        positive += (g0 > 0) == (r0 > 0);  // the field is w_1 w_2 (∂q_2/∂y - ∂q_1/∂y) = w_1 w_2 det(dq/dP)
+      }
+      if ((g0 < 0) == (g1 < 0)) continue;
+      double lo = ys[j], hi = ys[j + 1];
+      for (int k = 0; k < 100; ++k) ((det.value({x, 0.5 * (lo + hi)}) < 0) == (g0 < 0) ? lo : hi) = 0.5 * (lo + hi);
+      const double y_field = 0.5 * (lo + hi);
+      lo = ys[j];
+      hi = ys[j + 1];
+      const bool r_neg = fd_det(x, lo) < 0;
+      for (int k = 0; k < 60; ++k) ((fd_det(x, 0.5 * (lo + hi)) < 0) == r_neg ? lo : hi) = 0.5 * (lo + hi);
+      EXPECT_NEAR(y_field, 0.5 * (lo + hi), 1e-5) << "x = " << x;
+      zeros.push_back(y_field);
+    }
+  }
+  ASSERT_GT(compared, 1000);
+  EXPECT_EQ(positive, compared);
+  ASSERT_GE(zeros.size(), 5u);
+  const double ystar = zeros.front();
+  for (double y : zeros) EXPECT_NEAR(y, ystar, 1e-9);
+  // S = the line's section of W (one interval, by bisection on reachable()).
+  double inside = std::nan("");
+  for (int i = 0; i <= 4000 && std::isnan(inside); ++i) {
+    const double x = box.min.x + box.width() * i / 4000.0;
+    if (f.model->reachable({x, ystar, 0.0})) inside = x;
+  }
+  ASSERT_FALSE(std::isnan(inside));
+  const auto edge = [&](double out) {
+    double a = inside, c = out;
+    for (int i = 0; i < 200; ++i) (f.model->reachable({0.5 * (a + c), ystar, 0.0}) ? a : c) = 0.5 * (a + c);
+    return 0.5 * (a + c);
+  };
+  const double xa = edge(box.min.x - 10.0), xb = edge(box.max.x + 10.0);
+  for (int i = 1; i < 100; ++i) ASSERT_TRUE(f.model->reachable({xa + (xb - xa) * i / 100.0, ystar, 0.0}));
+  const int n = 800;
+  const double cell = box.width() * box.height() / (double(n) * n);
+  double estimate = 0.0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const Point p{box.min.x + (i + 0.5) * box.width() / n, box.min.y + (j + 0.5) * box.height() / n};
+      if (!f.model->reachable({p.x, p.y, 0.0})) continue;
+      const double px = std::clamp(p.x, xa, xb);
+      if (std::hypot(p.x - px, p.y - ystar) >= delta) estimate += cell;
+    }
+  }
+  const criteria::LimitedWorkspace lw = limited(f);
+  std::printf("[ real     ] y* = %.9g, S x in [%.6g, %.6g], grid %.6g, certified [%.9g, %.9g]\n", ystar, xa, xb,
+              estimate, lw.region.area_lower, lw.region.area_upper);
+  EXPECT_LE(lw.region.area_lower, estimate * (1 + 2e-3));
+  EXPECT_GE(lw.region.area_upper, estimate * (1 - 2e-3));
+  EXPECT_LE(lw.region.width(), 1e-3 * lw.region.area_upper);
+  expect_enclosure(lw.region);
+  for (const auto& c : lw.singular_curves) {
+    for (const Point& p : c) EXPECT_NEAR(p.y, ystar, lw.singular_error + 1e-6);
   }
 }
 
@@ -391,8 +493,8 @@ TEST(SingularityDistance, CliReportsTheIntervalAndRefusesBadInput) {
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("min_singularity_distance"), std::string::npos) << bad.err;
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
-  // A mechanism without the field refuses with one line (the real-scheme biglide).
-  Json real = dataset_json("biglide_real");
+  // A mechanism without the field refuses with one line (the Π-joint on its own).
+  Json real = dataset_json("pi_joint_prototype");
   real["criteria"] = {{"min_singularity_distance", 10.0}};
   const auto real_path = dir / "real.json";
   {

@@ -154,6 +154,26 @@ struct BiglideChain {
   }
 };
 
+// The real scheme's type-2 singular determinant (q_i from [Strutynskyi] eq.
+// 5-8, docs/references.md; derived here): dq/dP has rows (1, ∂q_1/∂y)
+// and (1, ∂q_2/∂y), singular where ∂q_2/∂y = ∂q_1/∂y; times w_1 w_2 (to clear
+// the denominators, with w_1 ∂v_x/∂y = b_1 h_1): w_2 (M00 b_1 h_1 + M01 w_1) +
+// b_2 h_2 (M10 b_1 h_1 + M11 w_1). With M = I it is the simplified scheme's
+// -(w_1 h_2 + h_1 w_2) (BiglideRods::singular_det): the rods aligned.
+struct BiglideRealSingular {
+  BiglideVelocityRatio legs;
+  template <class T> T eval(const T& x, const T& y) const {
+    using certified::max;
+    using certified::sqrt;
+    using std::sqrt;
+    const auto p = legs.parts(x, y);
+    const T w1 = sqrt(max(p.w1sq, 0.0)), w2 = sqrt(max(p.w2sq, 0.0));
+    const double b1 = BiglideVelocityRatio::b1, b2 = BiglideVelocityRatio::b2;
+    return w2 * (T(legs.m00 * b1) * p.h1 + T(legs.m01) * w1) + T(b2) * p.h2 * (T(legs.m10 * b1) * p.h1 + T(legs.m11) * w1);
+  }
+  CellState domain(const Box& b) const { return legs.domain(b); }
+};
+
 }  // namespace
 
 CriterionField biglide_pressure_angle(const mechanisms::Biglide& mechanism) {
@@ -242,11 +262,17 @@ class BiglideFields final : public CriterionFields {
     return sets;
   }
   CriterionField singular_determinant(const mechanisms::Criteria& /*criteria*/) const override {
-    if (m_->real_scheme()) {
-      throw std::invalid_argument("the real-scheme biglide's workspace is itself certified (coupler-curve boundary); "
-                                  "the distance to its type-2 singularity needs the simplified scheme");
-    }
-    return point_platform_singular(BiglideRods(*m_), "biglide");
+    if (!m_->real_scheme()) return point_platform_singular(BiglideRods(*m_), "biglide");
+    const BiglideRealSingular field{BiglideVelocityRatio(*m_, 1)};
+    CriterionField c;
+    c.name = "singularity_distance";
+    c.unit = "length";
+    c.key = "biglide_real.det";
+    c.surrogate = std::make_shared<certified::TemplateField<BiglideRealSingular>>(field);
+    c.level = [](double) { return 0.0; };
+    c.value = [field](Point p) { return field.eval<double>(p.x, p.y); };
+    c.within_test = [legs = field.legs](const Box& b) { return legs.within(b); };
+    return c;
   }
 
  private:
