@@ -153,11 +153,51 @@ namespace {
 TEST_F(Cli, EvalGivesTheDistanceToTheTypeTwoSingularity) {
   // PAMINSA at phi = 0: the singular circle has radius
   // sqrt(R_b² + R_p² - 2 R_b R_p) = 0.25 m ([Briot]), so from (0.1, 0.05) the
-  // distance is 0.25 - |P| (to the polyline's chord sag).
-  const auto r = run("eval " + dataset("three_rpr_paminsa.json") + " 0.1 0.05 0 --json");
-  ASSERT_EQ(r.status, 0) << r.err;
-  const auto j = nlohmann::json::parse(r.out);
-  EXPECT_NEAR(j["distance_to_type2_singularity"].get<double>(), 0.25 - std::hypot(0.1, 0.05), 2e-4);
+  // distance is 0.25 - |P|. Without a workspace (no leg limits, no window) to
+  // the drawn curve, within its chords' sag; with one, certified: the stated
+  // bound must hold it.
+  {
+    const auto r = run("eval " + dataset("three_rpr_paminsa.json") + " 0.1 0.05 0 --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_NEAR(j["distance_to_type2_singularity"].get<double>(), 0.25 - std::hypot(0.1, 0.05), 2e-4);
+    EXPECT_FALSE(j.contains("distance_to_type2_singularity_error"));
+  }
+  {
+    const auto r = run("eval " + dataset("three_rpr_paminsa_phi0_r110.json") + " 0.1 0.05 0 --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    const double d = j["distance_to_type2_singularity"].get<double>();
+    const double err = j["distance_to_type2_singularity_error"].get<double>();
+    EXPECT_LT(err, 1e-6);
+    EXPECT_NEAR(d, 0.25 - std::hypot(0.1, 0.05), err + 1e-12);
+  }
+  // The simplified biglide with rods 2000 and 300 mm: the rods align on the
+  // line w_1 (y - B) = (y + B) w_2 (a closed form in y alone, bisected here).
+  {
+    const double b = 500.0, l1 = 2000.0, l2 = 300.0;
+    const auto align = [&](double y) {
+      return std::sqrt(l1 * l1 - (y + b) * (y + b)) * (y - b) - (y + b) * std::sqrt(l2 * l2 - (y - b) * (y - b));
+    };
+    double lo = 600.0, hi = 700.0;
+    for (int i = 0; i < 200; ++i) (align(0.5 * (lo + hi)) < 0.0 ? lo : hi) = 0.5 * (lo + hi);
+    const auto r = run("eval " + dataset("biglide_simplified_dsing20.json") + " 2200 600 --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_NEAR(j["distance_to_type2_singularity"].get<double>(), 0.5 * (lo + hi) - 600.0,
+                j["distance_to_type2_singularity_error"].get<double>() + 1e-9);
+    EXPECT_NE(run("eval " + dataset("biglide_simplified_dsing20.json") + " 2200 600").out.find("certified"),
+              std::string::npos);
+  }
+  // MOMA M1: the rods never align inside W: no distance, and the reason.
+  {
+    const auto r = run("eval " + dataset("moma_m1_g0_l250.json") + " 0 -300 --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_TRUE(j["distance_to_type2_singularity"].is_null());
+    EXPECT_NE(j["distance_to_type2_singularity_reason"].get<std::string>().find("no type-2 singular point"),
+              std::string::npos);
+  }
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "criteria/singularity_distance.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <limits>
 #include <map>
@@ -109,6 +110,44 @@ std::shared_ptr<const mechanisms::Mechanism> limited_mechanism(const mechanisms:
     }
   }
   return std::make_shared<LimitedMechanism>(file.model, std::move(fields), std::move(singular), singular_distance);
+}
+
+std::optional<SingularityDistance> singularity_distance_at(const mechanisms::Design& file, geometry::Point p) {
+  const auto fields = file.model->capability<CriterionFields>();
+  if (!fields) return std::nullopt;
+  try {
+    (void)detail::singular_field(file);
+  } catch (const std::exception&) {
+    return std::nullopt;  // no determinant for this mechanism (or orientation)
+  }
+  const geometry::Region w = criteria_domain(file);
+  certified::LevelSetOptions o;
+  o.relative_tolerance = 1e-6;
+  // With area_estimate = diag², the traced chords' bound is w = 0.9e-6 diag² / (4 × S's length): about
+  // 2e-7 of the diagonal for an S as long as the diagonal.
+  const geometry::Box box = w.bbox();
+  const double diag = std::hypot(box.width(), box.height());
+  const detail::SingularTubes t = detail::singular_tubes(file, w, 0.25 * diag, diag * diag, o, false);
+  SingularityDistance d;
+  if (!t.nowhere.empty()) {
+    d.note = t.nowhere;
+    return d;  // S is all of W: d = 0
+  }
+  if (t.empty_set) {
+    d.lower = d.upper = std::numeric_limits<double>::infinity();
+    d.note = "no type-2 singular point of the working mode in the workspace";
+    return d;
+  }
+  const double along = detail::distance_to_curves(t.curves, p);
+  d.error = t.error;
+  d.upper = along + t.error;
+  d.lower = std::max(0.0, along - t.error);
+  for (const geometry::Box& b : t.undecided) {  // S may pass anywhere in a box it could not trace
+    const double dx = std::max({b.min.x - p.x, 0.0, p.x - b.max.x}), dy = std::max({b.min.y - p.y, 0.0, p.y - b.max.y});
+    d.lower = std::min(d.lower, std::hypot(dx, dy));
+  }
+  if (t.curves.empty()) d.upper = std::numeric_limits<double>::infinity();  // only untraced boxes: S may be empty
+  return d;
 }
 
 std::optional<CriterionFields::WorkspaceSets> workspace_sets(const mechanisms::Design& file) {

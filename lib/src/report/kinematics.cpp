@@ -9,6 +9,7 @@
 #include <numbers>
 #include <set>
 
+#include "pkmws/criteria/fields.hpp"
 #include "pkmws/io/figure.hpp"
 #include "report/json.hpp"
 #include "report/text.hpp"
@@ -222,6 +223,8 @@ Json eval_json(const EvalReport& r) {
   out["pose"] = pose_json(r.header.dof, r.pose);
   if (r.distance_to_type2_singularity) {
     out["distance_to_type2_singularity"] = *r.distance_to_type2_singularity;
+    if (r.distance_error) out["distance_to_type2_singularity_error"] = *r.distance_error;
+    out["distance_to_type2_singularity_to"] = r.distance_source;
   } else {
     out["distance_to_type2_singularity"] = nullptr;
     out["distance_to_type2_singularity_reason"] = r.distance_reason;
@@ -300,24 +303,37 @@ EvalReport eval(const io::MechanismFile& mech, const mechanisms::Pose& pose) {
   EvalReport r;
   r.header = header_of(mech);
   r.pose = pose;
-  // Distance in task space from the pose to the traced type-2 singularity
-  // curves at this orientation (polylines whose vertices lie on the curve),
-  // none when the mechanism has none drawn.
-  if (mech.model->dof() >= 2) {
+  // Distance in task space from the pose to the type-2 singularity: to the
+  // working mode's singular set inside the workspace, traced with a bound,
+  // where the mechanism gives its determinant; else to the singularity curves
+  // it draws at this orientation (polylines whose vertices lie on the curve).
+  const geometry::Point p{pose.x, pose.y};
+  if (const auto d = mech.model->dof() >= 2 ? criteria::singularity_distance_at(mech, p) : std::nullopt) {
+    if (!d->note.empty() && !std::isfinite(d->upper)) {
+      r.distance_reason = d->note;
+    } else {
+      r.distance_to_type2_singularity = 0.5 * (d->lower + d->upper);
+      r.distance_error = 0.5 * (d->upper - d->lower);
+      r.distance_source = d->note.empty() ? "the working mode's type-2 singular set inside the workspace, certified"
+                                          : d->note;
+    }
+  } else if (mech.model->dof() >= 2) {
     double best = std::numeric_limits<double>::infinity();
-    const geometry::Point p{pose.x, pose.y};
     for (const auto& curve : mech.model->draw(pose).singular_curves) {
       for (std::size_t k = 0; k + 1 < curve.size(); ++k) {
-        const geometry::Point d = curve[k + 1] - curve[k];
-        const double len2 = geometry::dot(d, d);
-        const double t = len2 > 0.0 ? std::clamp(geometry::dot(p - curve[k], d) / len2, 0.0, 1.0) : 0.0;
-        best = std::min(best, geometry::norm(p - (curve[k] + t * d)));
+        const geometry::Point seg = curve[k + 1] - curve[k];
+        const double len2 = geometry::dot(seg, seg);
+        const double t = len2 > 0.0 ? std::clamp(geometry::dot(p - curve[k], seg) / len2, 0.0, 1.0) : 0.0;
+        best = std::min(best, geometry::norm(p - (curve[k] + t * seg)));
       }
       if (curve.size() == 1) best = std::min(best, geometry::norm(p - curve[0]));
     }
-    if (std::isfinite(best)) r.distance_to_type2_singularity = best;
+    if (std::isfinite(best)) {
+      r.distance_to_type2_singularity = best;
+      r.distance_source = "the singularity curves drawn at this orientation";
+    }
   }
-  if (!r.distance_to_type2_singularity) {
+  if (!r.distance_to_type2_singularity && r.distance_reason.empty()) {
     r.distance_reason = mech.model->dof() == 1
                             ? "a 1-DOF mechanism has no task-space singularity curves"
                             : "no type-2 singularity curve is traced for this mechanism at this orientation";
@@ -367,7 +383,14 @@ std::string to_text(const EvalReport& r) {
   const std::string& units = r.header.units;
   std::string t = title(r.header);
   t += format("pose %s\n", pose_text(r.header, out["pose"]).c_str());
-  t += format("distance to a type-2 singularity: %s\n", with_reason(out, "distance_to_type2_singularity", units).c_str());
+  std::string distance = with_reason(out, "distance_to_type2_singularity", units);
+  if (out.contains("distance_to_type2_singularity_error")) {
+    distance += " ± " + num(out["distance_to_type2_singularity_error"]) + " " + units;
+  }
+  if (out.contains("distance_to_type2_singularity_to")) {
+    distance += " (to " + out["distance_to_type2_singularity_to"].get<std::string>() + ")";
+  }
+  t += format("distance to a type-2 singularity: %s\n", distance.c_str());
   for (const auto& m : out["modes"]) {
     t += format("working mode %s: %s\n", m["mode"].get<std::string>().c_str(),
                 m["reachable"].get<bool>() ? "reachable" : ("not reachable, " + m["reason"].get<std::string>()).c_str());

@@ -143,6 +143,17 @@ LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::ve
 /// is delegated; workspace() throws (that region is certified, not exact).
 std::shared_ptr<const mechanisms::Mechanism> limited_mechanism(const mechanisms::Design& file);
 
+/// d(P) = dist(P, S), S the working mode's type-2 singular set inside the
+/// workspace (as min_singularity_distance uses it), for `pkmws eval`.
+struct SingularityDistance {
+  double lower = 0.0, upper = 0.0;  // certified bounds on d(P) (infinite: S ∩ W is empty)
+  double error = 0.0;               // the traced chords' distance bound w
+  std::string note;                 // S ∩ W empty, or S all of W
+};
+/// S traced to 1e-6 of the workspace's diagonal; nothing when the mechanism
+/// has no singular-determinant field.
+std::optional<SingularityDistance> singularity_distance_at(const mechanisms::Design& file, geometry::Point p);
+
 /// The workspace the criteria are restricted to: Mechanism::workspace(), or
 /// for a workspace cut by level sets (CriterionFields::workspace_sets) the
 /// outer enclosure Mechanism::workspace_enclosure() gives (for figures and

@@ -51,9 +51,13 @@ std::string dk_figure(const io::MechanismFile& file, const DkReport& report, std
 struct EvalReport {
   MechanismHeader header;
   mechanisms::Pose pose;
-  /// Task-space distance to the traced type-2 singularity curves at this
-  /// orientation, or nothing with the reason.
+  /// Task-space distance to the type-2 singularity at this orientation, or
+  /// nothing with the reason: to the working mode's singular set inside the
+  /// workspace, certified within ± distance_error (criteria::singularity_distance_at),
+  /// or else to the singularity curves the mechanism draws (no bound).
   std::optional<double> distance_to_type2_singularity;
+  std::optional<double> distance_error;
+  std::string distance_source;  // what the distance is measured to
   std::string distance_reason;
   std::vector<mechanisms::Evaluation> modes;  // every criterion per working mode
   bool has_load = false;                      // the file's criteria give a load (reactions)
