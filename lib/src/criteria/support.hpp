@@ -204,19 +204,27 @@ CriterionField point_platform_field(const Model& model, const mechanisms::Mechan
 // The type-2 singular determinant of a point platform: det A = u_1 x u_2, A's
 // rows the last links' directions u_i (two-force members, [Briot]); zero where
 // the links are aligned (docs/theory/level_sets.md, distance to the type-2 singularity).
+// A field whose level is 0 whatever the threshold (a determinant's zero set,
+// an assembly-mode sign), from an Impl as TemplateField takes it.
+template <class Impl>
+CriterionField zero_level_field(const Impl& impl, std::string name, std::string unit, std::string key,
+                                certified::WithinTest within) {
+  CriterionField c;
+  c.name = std::move(name);
+  c.unit = std::move(unit);
+  c.key = std::move(key);
+  c.surrogate = std::make_shared<certified::TemplateField<Impl>>(impl);
+  c.level = [](double) { return 0.0; };
+  c.value = [impl](geometry::Point p) { return impl.template eval<double>(p.x, p.y); };
+  c.within_test = std::move(within);
+  return c;
+}
+
 template <class Model>
 CriterionField point_platform_singular(const Model& model, const std::string& kind) {
   using What = typename PointPlatformField<Model>::What;
-  CriterionField c;
-  c.name = "singularity_distance";
-  c.unit = "length";
-  c.key = kind + ".det";
-  const PointPlatformField<Model> field{model, What::det};
-  c.surrogate = std::make_shared<certified::TemplateField<PointPlatformField<Model>>>(field);
-  c.level = [](double) { return 0.0; };
-  c.value = [field](geometry::Point p) { return field.template eval<double>(p.x, p.y); };
-  c.within_test = [model](const geometry::Box& b) { return model.within(b); };
-  return c;
+  return zero_level_field(PointPlatformField<Model>{model, What::det}, "singularity_distance", "length", kind + ".det",
+                          [model](const geometry::Box& b) { return model.within(b); });
 }
 
 // The capability CriterionFields of a point platform (valid while the mechanism lives).

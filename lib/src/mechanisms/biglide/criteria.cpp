@@ -32,6 +32,7 @@ struct BiglideVelocityRatio {
   }
   template <class T> struct Parts {
     T h1, w1sq, dq1, h2, w2sq, dq2;
+    T w1, w2;  // sqrt(max(w_i², 0))
   };
   template <class T> Parts<T> parts(const T& x, const T& y) const {
     using certified::max;
@@ -41,7 +42,8 @@ struct BiglideVelocityRatio {
     Parts<T> r;
     r.h1 = y + T(b);
     r.w1sq = T(l3 * l3) - sqr(r.h1);
-    const T w1 = sqrt(max(r.w1sq, 0.0));
+    r.w1 = sqrt(max(r.w1sq, 0.0));
+    const T& w1 = r.w1;
     r.dq1 = T(-b1) * r.h1 / w1;
     const T dvx = T(b1) * r.h1 / w1;
     const T jy = T(-b) - T(b1 * m10) * w1 + T(m11) * r.h1;
@@ -49,8 +51,8 @@ struct BiglideVelocityRatio {
     const T djy = T(m10) * dvx + T(m11);
     r.h2 = T(b) - jy;
     r.w2sq = T(l2 * l2) - sqr(r.h2);
-    const T w2 = sqrt(max(r.w2sq, 0.0));
-    r.dq2 = djx + T(b2) * r.h2 * djy / w2;
+    r.w2 = sqrt(max(r.w2sq, 0.0));
+    r.dq2 = djx + T(b2) * r.h2 * djy / r.w2;
     (void)x;
     return r;
   }
@@ -70,21 +72,15 @@ struct BiglideVelocityRatio {
   // Slider 2's position q_2 = J_x + b_2 w_2 for the tool at (x, y), J_x = x +
   // b_1 w_1 (1 - M00) + M01 h_1 (J = S_1 + M (T - S_1), S_1 = (x + b_1 w_1, -B)).
   template <class T> T slider2(const T& x, const Parts<T>& p) const {
-    using certified::max;
-    using certified::sqrt;
-    using std::sqrt;
-    const T w1 = sqrt(max(p.w1sq, 0.0));
-    const T jx = x + T(b1 * (1.0 - m00)) * w1 + T(m01) * p.h1;
-    return jx + T(b2) * sqrt(max(p.w2sq, 0.0));
+    const T jx = x + T(b1 * (1.0 - m00)) * p.w1 + T(m01) * p.h1;
+    return jx + T(b2) * p.w2;
   }
   // Box ⊆ workspace: the chain closes with both sliders inside their strokes.
   CellState within(const Box& box) const {
-    using certified::max;
-    using certified::sqrt;
     const Interval x(box.min.x, box.max.x), y(box.min.y, box.max.y);
     const Parts<Interval> p = parts(x, y);
     if (p.w1sq.hi < 0.0 || p.w2sq.hi < 0.0) return CellState::outside;
-    const Interval q1 = x + Interval(b1) * sqrt(max(p.w1sq, 0.0));
+    const Interval q1 = x + Interval(b1) * p.w1;
     const Interval q2 = slider2(x, p);
     if (q1.hi < stroke[0][0] || q1.lo > stroke[0][1] || q2.hi < stroke[1][0] || q2.lo > stroke[1][1])
       return CellState::outside;
@@ -104,12 +100,8 @@ struct BiglideRods {
   explicit BiglideRods(const mechanisms::Biglide& m)
       : legs(m, 0), l1(m.params().rods[0]), l2(m.params().rods[1]) {}
   template <class T> T cos_eps(const T& x, const T& y) const {
-    using certified::max;
-    using certified::sqrt;
-    using std::sqrt;
     const auto p = legs.parts(x, y);
-    const T w1 = sqrt(max(p.w1sq, 0.0)), w2 = sqrt(max(p.w2sq, 0.0));
-    return (w1 * w2 - p.h1 * p.h2) / (l1 * l2);  // u_1 . u_2 with u_2,y = y - B = -h_2
+    return (p.w1 * p.w2 - p.h1 * p.h2) / (l1 * l2);  // u_1 . u_2 with u_2,y = y - B = -h_2
   }
   template <class T> Rows2<T> rows(const T& x, const T& y) const {
     const auto p = legs.parts(x, y);
@@ -118,12 +110,8 @@ struct BiglideRods {
   // det A = u_1 x u_2 = -(w_1 h_2 + h_1 w_2) (u_1 = (w_1, h_1), u_2 = (w_2, -h_2);
   // derived from [Strutynskyi] eq. 5-6): zero where the rods are aligned.
   template <class T> T singular_det(const T& x, const T& y) const {
-    using certified::max;
-    using certified::sqrt;
-    using std::sqrt;
     const auto p = legs.parts(x, y);
-    const T w1 = sqrt(max(p.w1sq, 0.0)), w2 = sqrt(max(p.w2sq, 0.0));
-    return -(w1 * p.h2 + p.h1 * w2);
+    return -(p.w1 * p.h2 + p.h1 * p.w2);
   }
   CellState domain(const Box& b) const { return legs.domain(b); }
   CellState within(const Box& b) const { return legs.within(b); }
@@ -163,13 +151,10 @@ struct BiglideChain {
 struct BiglideRealSingular {
   BiglideVelocityRatio legs;
   template <class T> T eval(const T& x, const T& y) const {
-    using certified::max;
-    using certified::sqrt;
-    using std::sqrt;
     const auto p = legs.parts(x, y);
-    const T w1 = sqrt(max(p.w1sq, 0.0)), w2 = sqrt(max(p.w2sq, 0.0));
     const double b1 = BiglideVelocityRatio::b1, b2 = BiglideVelocityRatio::b2;
-    return w2 * (T(legs.m00 * b1) * p.h1 + T(legs.m01) * w1) + T(b2) * p.h2 * (T(legs.m10 * b1) * p.h1 + T(legs.m11) * w1);
+    return p.w2 * (T(legs.m00 * b1) * p.h1 + T(legs.m01) * p.w1) +
+           T(b2) * p.h2 * (T(legs.m10 * b1) * p.h1 + T(legs.m11) * p.w1);
   }
   CellState domain(const Box& b) const { return legs.domain(b); }
 };
@@ -264,15 +249,8 @@ class BiglideFields final : public CriterionFields {
   CriterionField singular_determinant(const mechanisms::Criteria& /*criteria*/) const override {
     if (!m_->real_scheme()) return point_platform_singular(BiglideRods(*m_), "biglide");
     const BiglideRealSingular field{BiglideVelocityRatio(*m_, 1)};
-    CriterionField c;
-    c.name = "singularity_distance";
-    c.unit = "length";
-    c.key = "biglide_real.det";
-    c.surrogate = std::make_shared<certified::TemplateField<BiglideRealSingular>>(field);
-    c.level = [](double) { return 0.0; };
-    c.value = [field](Point p) { return field.eval<double>(p.x, p.y); };
-    c.within_test = [legs = field.legs](const Box& b) { return legs.within(b); };
-    return c;
+    return zero_level_field(field, "singularity_distance", "length", "biglide_real.det",
+                            [legs = field.legs](const Box& b) { return legs.within(b); });
   }
 
  private:

@@ -221,15 +221,8 @@ CriterionField three_rpr_reaction(const mechanisms::ThreeRpr& mechanism, const m
 CriterionField three_rpr_assembly_mode(const mechanisms::ThreeRpr& mechanism, Point reference) {
   ThreeRprTwist impl(mechanism, 0, 2, mechanisms::Load{});
   impl.det_sign = reference_det_sign(impl, reference);
-  CriterionField c;
-  c.name = "assembly_mode";
-  c.unit = "";
-  c.key = "three_rpr.assembly";
-  c.surrogate = std::make_shared<certified::TemplateField<ThreeRprTwist>>(impl);
-  c.level = [](double) { return 0.0; };
-  c.value = [impl](Point p) { return impl.eval<double>(p.x, p.y); };
-  c.within_test = [impl](const Box& b) { return impl.within(b); };
-  return c;
+  return zero_level_field(impl, "assembly_mode", "", "three_rpr.assembly",
+                          [impl](const Box& b) { return impl.within(b); });
 }
 
 double three_rpr_characteristic_length(const mechanisms::ThreeRpr& mechanism, const mechanisms::Criteria& criteria) {
