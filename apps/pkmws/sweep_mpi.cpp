@@ -215,7 +215,7 @@ std::string MpiSweep::child_row() {
 // in chunks: one design at first, then as many as make about 2 ms of work at
 // the rate just measured (at most 64), and never more than a quarter of an
 // even share of what is left, so that cheap designs do not pay a counter
-// access and a pipe round trip each (about 0.1 ms) while costly ones are
+// access and a pipe round trip each while costly ones are
 // still taken one by one and the last ones spread over the ranks. The child
 // gets a chunk's indices at once and answers them in order. `between` runs
 // before each chunk; `row` gets each finished row.
