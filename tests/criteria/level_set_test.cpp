@@ -155,6 +155,76 @@ TEST(LevelSets, WidthShrinksWithTheToleranceAndBoundsNest) {
   }
 }
 
+// A star r = f(θ) = 1 + e cos 3θ in a polar chart: the field r - f(θ) with θ
+// on one axis and r on the other, and the area element ρ = r (the chart's
+// weight). ∫∫_{r <= f} r dr dθ = ½ ∫ f² dθ = π (1 + e²/2) in closed form.
+struct PolarStar {
+  double e = 0.3;
+  bool r_on_x = false;  // (x, y) = (r, θ) instead of (θ, r)
+  int side = 1;         // +1: r - f(θ) <= 0 (inside the star); -1: f(θ) - r <= 0
+  template <class T> T eval(const T& x, const T& y) const {
+    using certified::cos;
+    using std::cos;
+    const T& r = r_on_x ? x : y;
+    const T& t = r_on_x ? y : x;
+    const T v = r - (1.0 + e * cos(3.0 * t));
+    return side > 0 ? v : -v;
+  }
+  CellState domain(const Box&) const { return CellState::inside; }
+};
+
+TEST(LevelSets, WeightedChartAreasAgainstClosedForms) {
+  // The chart's θ-window [-π_d, π_d] misses 2.4e-16 of the turn: far below the tolerance.
+  const double e = 0.3, r_max = 1.5;
+  const double star = pi * (1.0 + 0.5 * e * e), annulus = pi * r_max * r_max - star;
+  for (bool r_on_x : {false, true}) {
+    for (int side : {1, -1}) {
+      const certified::TemplateField<PolarStar> f(PolarStar{e, r_on_x, side});
+      const Box w = r_on_x ? box(0.0, -pi, r_max, pi) : box(-pi, 0.0, pi, r_max);
+      certified::LevelSetOptions o;
+      o.relative_tolerance = 1e-9;
+      o.threads = 1;
+      o.weight = r_on_x ? certified::AreaWeight{0.0, 1.0, 0.0} : certified::AreaWeight{0.0, 0.0, 1.0};
+      const auto r = certified::sublevel_set(f, 0.0, geometry::rectangle(w), always_inside(w), o);
+      const double exact = side > 0 ? star : annulus;
+      EXPECT_LE(r.region.area_lower, exact + 1e-13) << r_on_x << side;
+      EXPECT_GE(r.region.area_upper, exact - 1e-13) << r_on_x << side;
+      EXPECT_LE(r.region.width(), 1e-9 * exact) << r_on_x << side;
+      EXPECT_GT(r.traced_cells, 0u);
+      // The unweighted area of the same set in (θ, r): ∫ f dθ = 2π (and its complement).
+      o.weight = {};
+      o.relative_tolerance = 1e-7;
+      const auto plain = certified::sublevel_set(f, 0.0, geometry::rectangle(w), always_inside(w), o);
+      const double flat = side > 0 ? 2.0 * pi : 2.0 * pi * (r_max - 1.0);
+      EXPECT_LE(plain.region.area_lower, flat + 1e-13);
+      EXPECT_GE(plain.region.area_upper, flat - 1e-13);
+    }
+  }
+}
+
+TEST(LevelSets, CosineAndSineEnclosures) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> centre(-10.0, 10.0), width(0.0, 3.0), t(0.0, 1.0);
+  for (int k = 0; k < 2000; ++k) {
+    const double lo = centre(rng), hi = lo + (k % 10 == 0 ? 0.0 : width(rng));
+    const Interval c = certified::cos(Interval(lo, hi)), s = certified::sin(Interval(lo, hi));
+    for (int j = 0; j <= 20; ++j) {
+      const double x = j == 20 ? hi : lo + (hi - lo) * t(rng);
+      EXPECT_TRUE(c.contains(std::cos(x))) << lo << " " << hi;
+      EXPECT_TRUE(s.contains(std::sin(x))) << lo << " " << hi;
+    }
+    // Tight: extremes reached only where an extremum lies within the interval (± slack).
+    if (hi - lo < 1e-3) {
+      EXPECT_LT(c.width(), 2e-3);
+      EXPECT_LT(s.width(), 2e-3);
+    }
+  }
+  // Jets: the chain rule against the closed forms.
+  const auto j = certified::sin(certified::Jet<double>::variable_x(0.7) * 2.0);
+  EXPECT_NEAR(j.dx, 2.0 * std::cos(1.4), 1e-15);
+  EXPECT_NEAR(j.dxx, -4.0 * std::sin(1.4), 1e-15);
+}
+
 using pkmws::test::five_bar::dextar;
 
 // Dense sampling: the fraction of a fine grid of cell centres of W's bbox that

@@ -26,7 +26,6 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 // The most a retry four levels deeper is expected to narrow the bounds.
 constexpr double max_retry_gain = 64.0;
 
-double box_area(const Box& b) { return b.width() * b.height(); }
 
 // Value enclosure of F over a box: natural form, intersected with the centred
 // (mean-value) form when the box lies in F's smooth domain.
@@ -95,8 +94,12 @@ struct CellTrace {
 class Tracer {
  public:
   Tracer(const ScalarField& f, double level, const Box& cell, bool swapped, int sgn, double lipschitz, double extent,
-         double tau, Interval curvature)
+         double tau, Interval curvature, const AreaWeight& weight)
       : f_(f), level_(level), swapped_(swapped), sgn_(sgn), L_(lipschitz), tau_(tau), g2_cell_(curvature) {
+    unit_ = weight.unit();
+    c0_ = weight.c0;
+    cu_ = swapped ? weight.cy : weight.cx;
+    cv_ = swapped ? weight.cx : weight.cy;
     u0_ = swapped ? cell.min.y : cell.min.x;
     u1_ = swapped ? cell.max.y : cell.max.x;
     v0_ = swapped ? cell.min.x : cell.min.y;
@@ -128,13 +131,26 @@ class Tracer {
     return 0;
   }
   Sample solve(double u, double guess);
-  // ∫(env - v0) over the envelope's vertices from `first` on (relative to v0:
-  // no cancellation).
+  // q(u) = ∫_{v0}^{w} ρ(u, v) dv: the weighted area under the envelope at u
+  // (w - v0 for the plane; terms of one sign where w >= v0 and ρ >= 0).
+  double qw(double u, double w) const {
+    return unit_ ? w - v0_ : (w - v0_) * (c0_ + cu_ * u + cv_ * (0.5 * (w + v0_)));
+  }
+  // ∫ q over the envelope's vertices from `first` on (relative to v0: no
+  // cancellation). Exact on each linear piece: q is then linear (the plane:
+  // the trapezoid rule) or quadratic in u (affine ρ: Simpson's rule).
   double integral(const std::vector<PLPoint>& env, std::size_t first) const {
     double sum = 0.0;
     for (std::size_t k = first; k + 1 < env.size(); ++k) {
-      const double du = env[k + 1].u - env[k].u;
-      if (du > 0.0) sum += 0.5 * du * ((env[k].w - v0_) + (env[k + 1].w - v0_));
+      const PLPoint& p = env[k];
+      const PLPoint& r = env[k + 1];
+      const double du = r.u - p.u;
+      if (!(du > 0.0)) continue;
+      if (unit_) {
+        sum += 0.5 * du * ((p.w - v0_) + (r.w - v0_));
+      } else {
+        sum += du / 6.0 * (qw(p.u, p.w) + 4.0 * qw(0.5 * (p.u + r.u), 0.5 * (p.w + r.w)) + qw(r.u, r.w));
+      }
     }
     return sum;
   }
@@ -160,6 +176,8 @@ class Tracer {
   double tau_;
   Interval g2_cell_;  // g'' over B' (may be infinite)
   double u0_ = 0, u1_ = 0, v0_ = 0, v1_ = 0, w0_ = 0, w1_ = 0, scale_ = 1;
+  bool unit_ = true;                 // ρ = 1
+  double c0_ = 1, cu_ = 0, cv_ = 0;  // ρ(u, v) = c0 + cu u + cv v
   bool failed_ = false;
   std::uint64_t points_ = 0;
   std::vector<PLPoint> env_lo_, env_hi_;
@@ -278,14 +296,21 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
       // g' = -F_u / F_v, g'' = -(F_uu + 2 F_uv g' + F_vv g'²) / F_v.
       const Interval g1 = -(fu / fv);
       const Interval g2 = -((fuu + Interval(2.0) * fuv * g1 + fvv * sqr(g1)) / fv);
-      if (g2.finite() && box_lo >= v0_ && box_hi <= v1_) {
+      if (g2.finite() && box_lo >= v0_ && box_hi <= v1_ && (unit_ || g1.finite())) {
         // The graph stays in the cell over [a, b] (h = g): the trapezoid rule's
         // remainder, ∫g = Δ (g(a) + g(b)) / 2 - g''(ξ) Δ³ / 12, with the signed
         // enclosure of g'' gives a width (g''_hi - g''_lo) Δ³ / 12 = O(Δ⁴)
         // (the envelopes' is O(Δ³)); the envelopes stay for the regions.
+        // Weighted (ρ affine), the same rule for q(u) = ∫_{v0}^{g} ρ dv:
+        // q'' = g'' (c0 + cu u) + 2 cu g' + cv (g'² + g g'').
         const double c = delta * delta * delta / 12.0;
-        const double q_lo = delta * (0.5 * (sa.lo + sb.lo) - v0_) - g2.hi * c;
-        const double q_hi = delta * (0.5 * (sa.hi + sb.hi) - v0_) - g2.lo * c;
+        Interval q2 = g2;
+        if (!unit_) {
+          q2 = g2 * (Interval(c0_) + Interval(cu_) * Interval(a, b)) + Interval(2.0 * cu_) * g1 +
+               Interval(cv_) * (sqr(g1) + Interval(box_lo, box_hi) * g2);
+        }
+        const double q_lo = delta * 0.5 * (qw(a, sa.lo) + qw(b, sb.lo)) - q2.hi * c;
+        const double q_hi = delta * 0.5 * (qw(a, sa.hi) + qw(b, sb.hi)) - q2.lo * c;
         if (q_hi - q_lo <= tau_ * delta || depth >= max_depth) {
           const std::size_t nlo = env_lo_.size(), nhi = env_hi_.size();
           accept(g2, true);
@@ -340,7 +365,7 @@ bool Tracer::run(CellTrace& out) {
   // The envelopes' integrals, tightened where the quadrature bound is better
   // (both bound the same ∫(h - v0) piece by piece).
   const double ilo = integral(env_lo_, 0) + gain_lo_, ihi = integral(env_hi_, 0) - gain_hi_;
-  const double cell = span * (v1_ - v0_);
+  const double cell = span * (v1_ - v0_) * (unit_ ? 1.0 : c0_ + cu_ * 0.5 * (u0_ + u1_) + cv_ * 0.5 * (v0_ + v1_));
   double lower, upper;
   if (sgn_ > 0) {  // S below the curve: area ∫(h - v0)
     lower = ilo;
@@ -366,7 +391,7 @@ bool Tracer::run(CellTrace& out) {
   return true;
 }
 
-CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double tau) {
+CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double tau, const AreaWeight& weight) {
   CellTrace t;
   const Grad<Interval> j = f.grad(cell);
   if (!j.dx.finite() || !j.dy.finite()) return t;
@@ -407,7 +432,7 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
   }
   if (!ok) return t;
   const Interval g2 = Interval::whole();  // no cell-wide curvature bound: per sub-interval jets are tighter
-  Tracer tracer(f, level, cell, swapped, sgn, lipschitz, extent, tau, g2);
+  Tracer tracer(f, level, cell, swapped, sgn, lipschitz, extent, tau, g2, weight);
   tracer.run(t);
   return t;
 }
@@ -451,22 +476,23 @@ void envelope_polygons(const CellTrace& t, const Box& cell, bool use_hi, std::ve
 // The area bounds of a box that is in S wherever it is in W, from splits
 // against W alone: parts inside W count fully, parts across W's boundary at
 // the depth limit count as undecided.
-void split_within(const WithinTest& within_test, const Box& b, int depth, double& inside_area, double& undecided_area) {
+void split_within(const WithinTest& within_test, const AreaWeight& weight, const Box& b, int depth, double& inside_area,
+                  double& undecided_area) {
   const CellState c = within_test(b);
   if (c == CellState::outside) return;
   if (c == CellState::inside) {
-    inside_area += box_area(b);
+    inside_area += weight.box(b);
     return;
   }
   if (depth == 0) {
-    undecided_area += box_area(b);
+    undecided_area += weight.box(b);
     return;
   }
   const double xm = 0.5 * (b.min.x + b.max.x), ym = 0.5 * (b.min.y + b.max.y);
-  split_within(within_test, make_box(b.min.x, b.min.y, xm, ym), depth - 1, inside_area, undecided_area);
-  split_within(within_test, make_box(xm, b.min.y, b.max.x, ym), depth - 1, inside_area, undecided_area);
-  split_within(within_test, make_box(b.min.x, ym, xm, b.max.y), depth - 1, inside_area, undecided_area);
-  split_within(within_test, make_box(xm, ym, b.max.x, b.max.y), depth - 1, inside_area, undecided_area);
+  split_within(within_test, weight, make_box(b.min.x, b.min.y, xm, ym), depth - 1, inside_area, undecided_area);
+  split_within(within_test, weight, make_box(xm, b.min.y, b.max.x, ym), depth - 1, inside_area, undecided_area);
+  split_within(within_test, weight, make_box(b.min.x, ym, xm, b.max.y), depth - 1, inside_area, undecided_area);
+  split_within(within_test, weight, make_box(xm, ym, b.max.x, b.max.y), depth - 1, inside_area, undecided_area);
 }
 
 // Boxes under (sgn > 0) / above (sgn < 0) a piecewise-linear envelope: on each
@@ -573,21 +599,22 @@ constexpr int kParallelRefineDepth = 5;
 // instead of exact clipping, which would cost more than it gains; the regions
 // take the whole box, clipped to W exactly (the split's hundreds of boxes
 // along W's boundary would only make the Boolean operations slow).
-void add_inside(const WithinTest& within_test, const Box& cell, CellState in_w, double small_cell, LeafResult& r) {
+void add_inside(const WithinTest& within_test, const AreaWeight& weight, const Box& cell, CellState in_w, double small_cell,
+                LeafResult& r) {
   r.inside.push_back(cell);
   if (in_w == CellState::inside) {
-    r.in_lower += box_area(cell);
+    r.in_lower += weight.box(cell);
     r.inside_kind.push_back(InsideKind::in_w);
   } else if (cell.width() >= small_cell) {
     r.inside_kind.push_back(InsideKind::straddle);
   } else {
-    split_within(within_test, cell, 8, r.in_lower, r.undecided_in);
+    split_within(within_test, weight, cell, 8, r.in_lower, r.undecided_in);
     r.inside_kind.push_back(InsideKind::small_split);
   }
 }
 
-void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, const Box& cell, int depth,
-            int max_depth, double tau, double small_cell, bool trace, Budget& budget, LeafResult& r,
+void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, const AreaWeight& weight, const Box& cell,
+            int depth, int max_depth, double tau, double small_cell, bool trace, Budget& budget, LeafResult& r,
             bool parallel = false) {
   if (budget.expired()) { r.undecided.push_back(cell); return; }  // valid: undecided is always allowed
   ++r.tests;
@@ -595,7 +622,7 @@ void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, co
   if (in_w == CellState::outside) return;  // S ⊆ W
   int active = -1;
   const CellState c = classify(cs, cell, &active);
-  if (c == CellState::inside) { add_inside(within_test, cell, in_w, small_cell, r); return; }
+  if (c == CellState::inside) { add_inside(within_test, weight, cell, in_w, small_cell, r); return; }
   if (c == CellState::outside) return;
   if (trace && active >= 0) {
     const Constraint& k = cs[static_cast<std::size_t>(active)];
@@ -604,7 +631,7 @@ void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, co
     // exactly (summarize), instead of refining the points where the level
     // curve meets W's boundary to the depth limit.
     if (k.field->domain(cell) == CellState::inside) {
-      CellTrace t = try_trace(*k.field, k.level, cell, tau);
+      CellTrace t = try_trace(*k.field, k.level, cell, tau, weight);
       if (t.ok) {
         (in_w == CellState::inside ? r.traced : r.traced_across).emplace_back(cell, std::move(t));
         return;
@@ -620,12 +647,12 @@ void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, co
     detail::ParallelPolicy nested;  // the enclosing arena's threads
     nested.serial_threshold = 0;
     detail::for_each_block(nested, kids.size(), kids.size(), [&](std::size_t k) {
-      refine(cs, within_test, kids[k], depth + 1, max_depth, tau, small_cell, trace, budget, parts[k], true);
+      refine(cs, within_test, weight, kids[k], depth + 1, max_depth, tau, small_cell, trace, budget, parts[k], true);
     });
     for (LeafResult& p : parts) append(r, std::move(p));
     return;
   }
-  for (const Box& k : kids) refine(cs, within_test, k, depth + 1, max_depth, tau, small_cell, trace, budget, r);
+  for (const Box& k : kids) refine(cs, within_test, weight, k, depth + 1, max_depth, tau, small_cell, trace, budget, r);
 }
 
 // Splits merged runs of the cover back into its leaf cells.
@@ -681,7 +708,14 @@ Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const W
   if (!(tau > 0.0)) {
     const double leaf = co.window.width() / (co.base * std::ldexp(1.0, co.max_depth));
     const double length = std::max(1.0, static_cast<double>(leaves.size())) * leaf;
-    const double area_est = std::max(pass.cover.area_inside + 0.5 * pass.cover.area_undecided, 1e-3 * box_area(co.window) * 1e-3);
+    const AreaWeight& w = options.weight;
+    double inside_est = pass.cover.area_inside, undecided_est = pass.cover.area_undecided;
+    if (!w.unit()) {
+      inside_est = undecided_est = 0.0;
+      for (const Box& b : pass.cover.inside) inside_est += w.box(b);
+      for (const Box& b : pass.cover.undecided) undecided_est += w.box(b);
+    }
+    const double area_est = std::max(inside_est + 0.5 * undecided_est, 1e-6 * w.box(co.window));
     tau = options.relative_tolerance * area_est / length;
   }
   pass.tau = tau;
@@ -694,8 +728,8 @@ Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const W
   policy.serial_threshold = 8;
   Budget budget(options, leaves.size());
   detail::for_each_block(policy, leaves.size(), leaves.size() * 64, [&](std::size_t k) {
-    refine(cs, within_test, leaves[k], 0, options.refine_depth, tau, pass.small_cell, options.trace, budget, pass.per_leaf[k],
-           detail::effective_threads(policy) > 1);
+    refine(cs, within_test, options.weight, leaves[k], 0, options.refine_depth, tau, pass.small_cell, options.trace, budget,
+           pass.per_leaf[k], detail::effective_threads(policy) > 1);
     budget.leaf_done();
   });
   pass.stopped = budget.stopped();
@@ -720,7 +754,8 @@ void deepen(Pass& pass, const std::vector<Constraint>& cs, const WithinTest& wit
   policy.serial_threshold = 8;
   Budget budget(options, cells.size());
   detail::for_each_block(policy, cells.size(), cells.size() * 64, [&](std::size_t i) {
-    refine(cs, within_test, cells[i].second, 0, levels, pass.tau, pass.small_cell, options.trace, budget, parts[i]);
+    refine(cs, within_test, options.weight, cells[i].second, 0, levels, pass.tau, pass.small_cell, options.trace, budget,
+           parts[i]);
     budget.leaf_done();
   });
   for (std::size_t i = 0; i < cells.size(); ++i) append(pass.per_leaf[cells[i].first], std::move(parts[i]));
@@ -730,7 +765,7 @@ void deepen(Pass& pass, const std::vector<Constraint>& cs, const WithinTest& wit
 
 // The bounds, pieces and curves of a pass. The pass is not changed: a retry
 // may refine it further and summarise it again.
-LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTest& within_test) {
+LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTest& within_test, const AreaWeight& weight) {
   LevelSetResult result;
   const CellCover& cover_result = pass.cover;
   const std::vector<LeafResult>& per_leaf = pass.per_leaf;
@@ -743,7 +778,7 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
   std::vector<Box> inside_all = cover_result.inside;
   std::vector<Box> undecided_all;
   for (const Box& b : cover_result.inside) {
-    if (within_test(b) == CellState::inside) in_lower += box_area(b);
+    if (within_test(b) == CellState::inside) in_lower += weight.box(b);
     else straddle_inside.push_back(b);
   }
   std::vector<std::vector<Point>> across_inner, across_outer;  // envelope polygons of traced cells across W's boundary
@@ -765,7 +800,7 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
     for (const Box& b : r.undecided) {
       undecided_all.push_back(b);
       ++result.undecided_cells;
-      undecided_in += box_area(b);
+      undecided_in += weight.box(b);
     }
     for (const auto& [cell, t] : r.traced) {
       traced_lower += t.lower;
@@ -783,6 +818,17 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
   // of S lies between W ∩ (the cell's side of its inner envelope) and
   // W ∩ (the side of its outer envelope).
   double straddle_lower = 0.0;
+  if (!weight.unit()) {
+    // A chart's plane: no exact clipping (W is not a region there); its
+    // window test should decide every cell, else they count as undecided.
+    for (const Box& b : straddle_inside) undecided_in += weight.box(b);
+    straddle_inside.clear();
+    for (const LeafResult& r : per_leaf) {
+      for (const auto& [cell, t] : r.traced_across) traced_upper += weight.box(cell);
+    }
+    across_inner.clear();
+    across_outer.clear();
+  }
   if (!straddle_inside.empty()) straddle_lower = within.intersect(boxes_region(straddle_inside)).area();
   const auto clipped_area = [&](const std::vector<std::vector<Point>>& polygons) {
     std::vector<Region> parts;
@@ -847,11 +893,11 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
   }
   // The regions (costly) only for the final pass: the retries need the bounds.
   const auto final_result = [&](const Pass& pass, LevelSetResult&& bounds) {
-    if (options.build_regions) add_regions(pass, within, options, bounds);
+    if (options.build_regions && options.weight.unit()) add_regions(pass, within, options, bounds);
     return std::move(bounds);
   };
   Pass pass = first_pass(constraints, within, within_test, options, 0.0);
-  LevelSetResult r = summarize(pass, within, within_test);
+  LevelSetResult r = summarize(pass, within, within_test, options.weight);
   // Retries (not when the deadline stopped the first run: a retry would stop
   // too). When the traced cells dominate the width (the estimate of area or
   // curve length was off), one rerun with a tighter τ. When the undecided
@@ -870,7 +916,7 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
   if (r.traced_width > 0.5 * width) {
     const double tau = r.tolerance_per_length * 0.5 * target() / width;
     const Pass again = first_pass(constraints, within, within_test, options, tau);
-    return final_result(again, summarize(again, within, within_test));
+    return final_result(again, summarize(again, within, within_test, options.weight));
   }
   const int max_depth = std::min(40, options.refine_depth + 4);
   while (!r.stopped && pass.depth < max_depth && r.region.area_upper - r.region.area_lower > target()) {
@@ -878,7 +924,7 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
     const double need = room > 0.0 ? 1.25 * r.undecided_area / room : 16.0;
     const int levels = std::clamp(static_cast<int>(std::ceil(std::log2(std::max(need, 2.0)))), 1, max_depth - pass.depth);
     deepen(pass, constraints, within_test, options, levels);
-    r = summarize(pass, within, within_test);
+    r = summarize(pass, within, within_test, options.weight);
   }
   return final_result(pass, std::move(r));
 }

@@ -113,6 +113,33 @@ inline Interval clamp(const Interval& a, double l, double h) {
   return {std::clamp(a.lo, l, h), std::clamp(a.hi, l, h)};
 }
 
+/// cos and sin over an interval: the end values (glibc's cos and sin are within
+/// 1 ulp; widened by 2 ulps) and every extremum inside (tested with a margin, so
+/// that an extremum next to an end is taken: that only widens). For the charts
+/// of the level sets (angles about a base joint).
+inline Interval cos(const Interval& a) {
+  constexpr double two_pi = 6.283185307179586, slack = 1e-12;
+  if (!(a.width() < 6.0)) return {-1.0, 1.0};
+  auto widen = [](double v, int dir) { return v + dir * (std::abs(v) * 0x1p-51 + 0x1p-1000); };
+  const double c0 = std::cos(a.lo), c1 = std::cos(a.hi);
+  double lo = widen(std::min(c0, c1), -1), hi = widen(std::max(c0, c1), 1);
+  // cos is 1 at 2πk and -1 at π + 2πk.
+  if (std::ceil((a.lo - slack) / two_pi) <= std::floor((a.hi + slack) / two_pi)) hi = 1.0;
+  if (std::ceil((a.lo - slack) / two_pi - 0.5) <= std::floor((a.hi + slack) / two_pi - 0.5)) lo = -1.0;
+  return {std::max(lo, -1.0), std::min(hi, 1.0)};
+}
+inline Interval sin(const Interval& a) {
+  constexpr double two_pi = 6.283185307179586, slack = 1e-12;
+  if (!(a.width() < 6.0)) return {-1.0, 1.0};
+  auto widen = [](double v, int dir) { return v + dir * (std::abs(v) * 0x1p-51 + 0x1p-1000); };
+  const double s0 = std::sin(a.lo), s1 = std::sin(a.hi);
+  double lo = widen(std::min(s0, s1), -1), hi = widen(std::max(s0, s1), 1);
+  // sin is 1 at π/2 + 2πk and -1 at -π/2 + 2πk.
+  if (std::ceil((a.lo - slack) / two_pi - 0.25) <= std::floor((a.hi + slack) / two_pi - 0.25)) hi = 1.0;
+  if (std::ceil((a.lo - slack) / two_pi + 0.25) <= std::floor((a.hi + slack) / two_pi + 0.25)) lo = -1.0;
+  return {std::max(lo, -1.0), std::min(hi, 1.0)};
+}
+
 // Point counterparts, so that fields are written once for both scalar types.
 inline double sqr(double a) { return a * a; }
 inline double clamp(double a, double l, double h) { return std::clamp(a, l, h); }
@@ -179,6 +206,18 @@ template <class S> Jet<S> sqrt(const Jet<S>& a) {
   const S d1 = S(0.5) / r;              // infinite at 0: the derivative does not exist there
   return compose(a, r, d1, -(S(2.0) * (d1 * d1 * d1)));  // (sqrt)'' = -1/(4 r^3) = -2 d1^3
 }
+template <class S> Jet<S> cos(const Jet<S>& a) {
+  using std::cos;
+  using std::sin;
+  const S c = cos(a.v);
+  return compose(a, c, -sin(a.v), -c);
+}
+template <class S> Jet<S> sin(const Jet<S>& a) {
+  using std::cos;
+  using std::sin;
+  const S s = sin(a.v);
+  return compose(a, s, cos(a.v), -s);
+}
 template <class S> Jet<S> max(const Jet<S>& a, double v) {
   Jet<S> r = a;
   r.v = max(a.v, v);
@@ -217,6 +256,16 @@ template <class S> Grad<S> sqrt(const Grad<S>& a) {
   using std::sqrt;
   const S r = sqrt(a.v);
   return compose(a, r, S(0.5) / r);
+}
+template <class S> Grad<S> cos(const Grad<S>& a) {
+  using std::cos;
+  using std::sin;
+  return compose(a, cos(a.v), -sin(a.v));
+}
+template <class S> Grad<S> sin(const Grad<S>& a) {
+  using std::cos;
+  using std::sin;
+  return compose(a, sin(a.v), cos(a.v));
 }
 template <class S> Grad<S> max(const Grad<S>& a, double v) { Grad<S> r = a; r.v = max(a.v, v); return r; }
 inline Grad<double> abs(const Grad<double>& a) { return a.v < 0.0 ? -a : a; }

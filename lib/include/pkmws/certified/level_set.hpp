@@ -57,6 +57,21 @@ class ScalarField {
   virtual bool excluded(const geometry::Box& box) const { return domain(box) == CellState::outside; }
 };
 
+/// The area element of the plane the fields are written in: dA = ρ dx dy with
+/// ρ = c0 + cx x + cy y, non-negative over the window (a chart's coordinates,
+/// e.g. polar ones: ρ = r; docs/theory/level_sets.md). Default: the plane
+/// itself, ρ = 1. Terms of one sign only (no cancellation in ρ).
+struct AreaWeight {
+  double c0 = 1.0, cx = 0.0, cy = 0.0;
+  bool unit() const { return c0 == 1.0 && cx == 0.0 && cy == 0.0; }
+  double at(geometry::Point p) const { return c0 + cx * p.x + cy * p.y; }
+  /// ∫∫ ρ over a box (exact for an affine ρ: the box's area times ρ at its centre).
+  double box(const geometry::Box& b) const {
+    const double a = b.width() * b.height();
+    return unit() ? a : a * at({0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)});
+  }
+};
+
 struct LevelSetOptions {
   /// Target bound width relative to the area: area_upper - area_lower <= tol * area (aimed at, reported).
   double relative_tolerance = 1e-6;
@@ -71,6 +86,9 @@ struct LevelSetOptions {
   /// traced cell gives the box below/around its envelopes, so area(inner) <=
   /// area_lower and area(outer) >= area_upper). Costly; the bounds do not need it.
   bool build_regions = false;
+  /// The area element (a chart's); the bounds are of ∫∫_S ρ. Regions are not
+  /// built for a weighted plane (they would be in the chart's coordinates).
+  AreaWeight weight;
   /// Trace curves (layer b); false gives the pure cell baseline (layer a).
   bool trace = true;
   /// A bound on the work: past this instant no cell is split or traced any
