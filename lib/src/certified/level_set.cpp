@@ -193,24 +193,47 @@ Tracer::Sample Tracer::solve(double u, double guess) {
   double lo = w0_, hi = w1_;
   double v = std::clamp(guess, w0_, w1_);
   bool converged = false;
+  double gv_root = 0.0;  // G_v at the last iterate
+  int bisections = 0;
   for (int it = 0; it < 50; ++it) {
     const Grad<double> j = f_.grad(xy(u, v));
     const double g = sgn_ * (j.v - level_);
     const double gv = sgn_ * (swapped_ ? j.dx : j.dy);
     if (!std::isfinite(g)) break;
+    gv_root = gv;
     if (g < 0.0) lo = std::max(lo, v); else hi = std::min(hi, v);
     double next = (gv > 0.0 && std::isfinite(gv)) ? v - g / gv : 0.5 * (lo + hi);
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    const bool done = std::abs(next - v) <= 2e-16 * scale_ || hi - lo <= 2e-16 * scale_;
+    if (!(next > lo && next < hi)) {
+      next = 0.5 * (lo + hi);
+      // Bisecting towards an end of B': the curve may be beyond it (then no
+      // root: the ends decide below, certified).
+      if (++bisections >= 2 && (lo == w0_ || hi == w1_)) {
+        const double end = lo == w0_ ? w0_ : w1_;
+        const double ge = sgn_ * (f_.value(xy(u, end)) - level_);
+        if ((end == w0_ && ge > 0.0) || (end == w1_ && ge < 0.0)) break;
+      }
+    }
+    // Steps of a few ulps are the rounding noise of G near its root (it may
+    // keep one sign there, and Newton then creeps by ulps): the certified
+    // bracket below takes over.
+    const bool done = std::abs(next - v) <= 1e-15 * scale_ || hi - lo <= 1e-15 * scale_;
     v = next;
     if (done) { converged = true; break; }
   }
   // ... then a certified bracket: G(blo) < 0 or blo = w0, G(bhi) > 0 or bhi = w1
-  // (G increases in v on B', so the root is between).
+  // (G increases in v on B', so the root is between). The first half-width
+  // covers the interval evaluation's own width at v (its rounding), so that
+  // one or two tries usually certify both sides.
   double blo = w0_, bhi = w1_;
   bool have_lo = false, have_hi = false;
   if (converged && v > w0_ && v < w1_) {
     double delta = 2e-16 * scale_;
+    const Point p = xy(u, v);
+    const Interval e = f_.enclose(make_box(p.x, p.y, p.x, p.y));
+    if (gv_root > 0.0 && e.finite()) {
+      const double noise = (e.hi - e.lo + std::abs(e.mid() - level_)) / gv_root;
+      if (noise < 1e-6 * scale_) delta = std::max(delta, 1.5 * noise);
+    }
     for (int k = 0; k < 40 && !(have_lo && have_hi); ++k) {
       const double a = std::max(w0_, v - delta), c = std::min(w1_, v + delta);
       if (!have_lo && a > w0_ && sign_at(u, a) < 0) { blo = a; have_lo = true; }
@@ -296,22 +319,53 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
       // g' = -F_u / F_v, g'' = -(F_uu + 2 F_uv g' + F_vv g'²) / F_v.
       const Interval g1 = -(fu / fv);
       const Interval g2 = -((fuu + Interval(2.0) * fuv * g1 + fvv * sqr(g1)) / fv);
-      if (g2.finite() && box_lo >= v0_ && box_hi <= v1_ && (unit_ || g1.finite())) {
-        // The graph stays in the cell over [a, b] (h = g): the trapezoid rule's
-        // remainder, ∫g = Δ (g(a) + g(b)) / 2 - g''(ξ) Δ³ / 12, with the signed
-        // enclosure of g'' gives a width (g''_hi - g''_lo) Δ³ / 12 = O(Δ⁴)
-        // (the envelopes' is O(Δ³)); the envelopes stay for the regions.
-        // Weighted (ρ affine), the same rule for q(u) = ∫_{v0}^{g} ρ dv:
-        // q'' = g'' (c0 + cu u) + 2 cu g' + cv (g'² + g g'').
+      // The trapezoid rule's remainder, ∫q = Δ (q(a) + q(b)) / 2 - q''(ξ) Δ³ / 12
+      // for q(u) = ∫_{v0}^{g(u)} ρ dv (g - v0 for the plane), with the signed
+      // enclosure of q'' over S: a width O(Δ⁴) per piece (the envelopes' is
+      // O(Δ³)). Weighted (ρ affine): q'' = g'' (c0 + cu u) + 2 cu g' + cv (g'² + g g'').
+      // The cell's part is ∫q(clamp(g, v0, v1)) = ∫q(g) - ∫D(g) with
+      // D(w) = q(w) - q(clamp(w)), non-decreasing where ρ >= 0 beyond the cell's
+      // edges; so ∫D(env_lo) <= ∫D(g) <= ∫D(env_hi), and those differ only
+      // where the envelopes straddle an edge (length ~ envelope gap / |g'|):
+      // the curve may leave the cell within the piece at fourth order too.
+      const bool in_cell = box_lo >= v0_ && box_hi <= v1_;
+      bool rho_positive = unit_;
+      if (!unit_) {
+        const double vlo = std::min(box_lo, v0_), vhi = std::max(box_hi, v1_);
+        rho_positive = std::min({c0_ + cu_ * a + cv_ * vlo, c0_ + cu_ * a + cv_ * vhi, c0_ + cu_ * b + cv_ * vlo,
+                                 c0_ + cu_ * b + cv_ * vhi}) >= 0.0;
+      }
+      if (g2.finite() && g1.finite() && (in_cell || rho_positive)) {
         const double c = delta * delta * delta / 12.0;
         Interval q2 = g2;
         if (!unit_) {
           q2 = g2 * (Interval(c0_) + Interval(cu_) * Interval(a, b)) + Interval(2.0 * cu_) * g1 +
                Interval(cv_) * (sqr(g1) + Interval(box_lo, box_hi) * g2);
         }
-        const double q_lo = delta * 0.5 * (qw(a, sa.lo) + qw(b, sb.lo)) - q2.hi * c;
-        const double q_hi = delta * 0.5 * (qw(a, sa.hi) + qw(b, sb.hi)) - q2.lo * c;
-        if (q_hi - q_lo <= tau_ * delta || depth >= max_depth) {
+        double q_lo = delta * 0.5 * (qw(a, sa.lo) + qw(b, sb.lo)) - q2.hi * c;
+        double q_hi = delta * 0.5 * (qw(a, sa.hi) + qw(b, sb.hi)) - q2.lo * c;
+        if (!in_cell) {
+          const double e_lo = std::max(0.0, g2.hi) * q * (1.0 + 1e-12), e_hi = std::max(0.0, -g2.lo) * q * (1.0 + 1e-12);
+          // ∫ D over a linear envelope from (a, wa) to (b, wb): unclamped minus clamped.
+          std::vector<PLPoint> tmp;
+          const auto d_integral = [&](double wa, double wb, double& size) {
+            const double whole = unit_ ? delta * (0.5 * (wa + wb) - v0_)
+                                       : delta / 6.0 * (qw(a, wa) + 4.0 * qw(0.5 * (a + b), 0.5 * (wa + wb)) + qw(b, wb));
+            tmp.clear();
+            add_clamped(tmp, a, wa, b, wb);
+            const double clamped = integral(tmp, 0);
+            size = std::abs(whole) + std::abs(clamped);
+            return whole - clamped;
+          };
+          double s_lo = 0.0, s_hi = 0.0;
+          const double d_lo = d_integral(sa.lo - e_lo, sb.lo - e_lo, s_lo);
+          const double d_hi = d_integral(sa.hi + e_hi, sb.hi + e_hi, s_hi);
+          // Rounding of the differences (a few ulps of the integrals).
+          const double round = 8.0 * std::numeric_limits<double>::epsilon() * (s_lo + s_hi + std::abs(q_lo) + std::abs(q_hi));
+          q_lo -= d_hi + round;
+          q_hi -= d_lo - round;
+        }
+        if (q_hi - q_lo <= tau_ * delta || (in_cell && depth >= max_depth)) {
           const std::size_t nlo = env_lo_.size(), nhi = env_hi_.size();
           accept(g2, true);
           gain_lo_ += std::max(0.0, q_lo - integral(env_lo_, nlo));
@@ -391,9 +445,26 @@ bool Tracer::run(CellTrace& out) {
   return true;
 }
 
+// The gradient over a box: the natural enclosure, intersected with the centred
+// form ∇F(c) + H(B)(B - c) (H enclosed over B, ∇F(c) over the point c) when
+// the box lies in F's smooth domain: its overestimation shrinks like the box's
+// width squared, so larger cells prove the level curve a graph.
+Grad<Interval> grad_enclosure(const ScalarField& f, const Box& b) {
+  Grad<Interval> g = f.grad(b);
+  if (f.domain(b) != CellState::inside) return g;
+  const Point c{0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)};
+  const Jet<Interval> h = f.jet(b);
+  const Grad<Interval> gc = f.grad(make_box(c.x, c.y, c.x, c.y));
+  const Interval dx = Interval(b.min.x, b.max.x) - Interval(c.x), dy = Interval(b.min.y, b.max.y) - Interval(c.y);
+  const Interval cx = gc.dx + h.dxx * dx + h.dxy * dy, cy = gc.dy + h.dxy * dx + h.dyy * dy;
+  if (cx.finite()) g.dx = intersect(g.dx, cx);
+  if (cy.finite()) g.dy = intersect(g.dy, cy);
+  return g;
+}
+
 CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double tau, const AreaWeight& weight) {
   CellTrace t;
-  const Grad<Interval> j = f.grad(cell);
+  const Grad<Interval> j = grad_enclosure(f, cell);
   if (!j.dx.finite() || !j.dy.finite()) return t;
   const bool y_ok = !j.dy.contains_zero(), x_ok = !j.dx.contains_zero();
   bool swapped;
@@ -419,7 +490,7 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
     const Box ext = swapped ? make_box(cell.min.x - extent, cell.min.y, cell.max.x + extent, cell.max.y)
                             : make_box(cell.min.x, cell.min.y - extent, cell.max.x, cell.max.y + extent);
     if (f.domain(ext) != CellState::inside) return t;
-    const Grad<Interval> je = f.grad(ext);
+    const Grad<Interval> je = grad_enclosure(f, ext);
     const double le = slope(je);
     if (!std::isfinite(le)) return t;
     if (le * du <= extent) {

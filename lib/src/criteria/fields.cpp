@@ -3,6 +3,7 @@
 #include "pkmws/core/error.hpp"
 
 #include "criteria/singularity_distance.hpp"
+#include "pkmws/geometry/primitives.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -210,6 +211,63 @@ void limit_singularity_distance(const mechanisms::Design& file, const geometry::
   if (t.stopped) out.detail.stopped = true;
 }
 
+// ⋂ {F_k <= level_k} over W = rest ∪ the charts' parts (disjoint): the rest
+// traced in (x, y) to 3/4 of the relative tolerance, each chart in its own
+// coordinates and area element to an equal share of the remaining quarter of
+// the rest's area (an absolute budget: a chart's part may be small). A chart
+// without one of the fields leaves W to the plane alone.
+certified::LevelSetResult charted_sublevel_set(const std::vector<certified::Constraint>& cs,
+                                               const std::vector<std::string>& keys, const CriterionFields::Charts& charts,
+                                               const certified::LevelSetOptions& options) {
+  std::vector<std::vector<certified::Constraint>> chart_cs;
+  std::vector<std::shared_ptr<const certified::ScalarField>> keep;
+  for (const CriterionFields::Chart& chart : charts.charts) {
+    std::vector<certified::Constraint> c;
+    for (const auto& cut : chart.cuts) c.push_back({cut.field.get(), cut.level});
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      auto f = chart.field(keys[i]);
+      if (!f) throw std::logic_error("charted_sublevel_set: a chart without the field " + keys[i]);
+      c.push_back({f.get(), cs[i].level});
+      keep.push_back(std::move(f));
+    }
+    chart_cs.push_back(std::move(c));
+  }
+  certified::LevelSetOptions o = options;
+  o.relative_tolerance = 0.75 * options.relative_tolerance;
+  certified::LevelSetResult total = certified::sublevel_set(cs, charts.rest, charts.rest_test, o);
+  const double budget = 0.25 * options.relative_tolerance * std::max(total.region.area_lower, 1e-300) /
+                        static_cast<double>(std::max<std::size_t>(1, charts.charts.size()));
+  for (std::size_t k = 0; k < charts.charts.size(); ++k) {
+    const CriterionFields::Chart& chart = charts.charts[k];
+    certified::LevelSetOptions co = options;
+    co.weight = chart.weight;
+    // The charts' parts are thin (a band, a small disk): a coarser cover
+    // (16 × 2³ cells over the window) still leaves the curve graphs in its cells.
+    co.cover_depth = std::min(co.cover_depth, 3);
+    // Relative to the window's area (>= the part's): the width stays within the budget.
+    co.relative_tolerance = std::clamp(budget / chart.weight.box(chart.window), 1e-15, 0.5);
+    const geometry::Box w = chart.window;
+    const certified::LevelSetResult r = certified::sublevel_set(
+        chart_cs[k], geometry::rectangle(w), [](const geometry::Box&) { return certified::CellState::inside; }, co);
+    total.region.area_lower += std::max(0.0, r.region.area_lower - chart.overlap);
+    total.region.area_upper += r.region.area_upper;
+    total.traced_cells += r.traced_cells;
+    total.undecided_cells += r.undecided_cells;
+    total.curve_points += r.curve_points;
+    total.cell_tests += r.cell_tests;
+    total.undecided_area += r.undecided_area;
+    total.traced_width += r.traced_width;
+    total.stopped = total.stopped || r.stopped;
+    for (const certified::CurvePiece& piece : r.curves) {
+      certified::CurvePiece mapped;
+      mapped.reserve(piece.size());
+      for (const geometry::Point& p : piece) mapped.push_back(chart.to_plane(p));
+      total.curves.push_back(std::move(mapped));
+    }
+  }
+  return total;
+}
+
 }  // namespace
 
 LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::vector<Limit>& limits,
@@ -252,6 +310,7 @@ LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::ve
     out.note = nowhere;
   } else {
     std::vector<certified::Constraint> cs;
+    std::vector<std::string> keys;  // of the criteria's constraints (after the workspace cuts)
     certified::WithinTest within_test;
     if (sets) {
       for (const auto& cut : sets->cuts) cs.push_back({cut.field.get(), cut.level});
@@ -259,11 +318,19 @@ LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::ve
     }
     for (auto& [key, entry] : by_key) {
       cs.push_back({entry.first.surrogate.get(), entry.second});
+      keys.push_back(key);
       if (!within_test) within_test = entry.first.within_test;  // one mechanism: one workspace test
     }
     certified::LevelSetOptions o = options;
     if (min_distance) o.build_regions = true;  // the tubes are cut from the regions
-    certified::LevelSetResult r = certified::sublevel_set(cs, within, within_test, o);
+    // Charts where the fields are singular on W's boundary or at a point of W
+    // (the bounds only: regions are built in the plane).
+    std::optional<CriterionFields::Charts> charts;
+    if (!sets && !o.build_regions) {
+      if (const auto fields = file.model->capability<CriterionFields>()) charts = fields->charts(within);
+    }
+    certified::LevelSetResult r =
+        charts ? charted_sublevel_set(cs, keys, *charts, o) : certified::sublevel_set(cs, within, within_test, o);
     out.region = std::move(r.region);
     out.curves = std::move(r.curves);
     out.detail = std::move(r);

@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pkmws/certified/interval.hpp"
@@ -227,6 +229,25 @@ CriterionField point_platform_singular(const Model& model, const std::string& ki
                           [model](const geometry::Box& b) { return model.within(b); });
 }
 
+// The surrogates of a point platform's criteria in a chart, by key (the keys
+// point_platform_field gives: kind + ".cos2eps", ".vratio", ".kappa", ".det"),
+// from a chart Model written like a plane's.
+template <class ChartModel>
+std::function<std::shared_ptr<const certified::ScalarField>(const std::string&)> point_platform_chart_fields(
+    ChartModel model, std::string kind) {
+  return [model = std::move(model), kind = std::move(kind)](const std::string& key) -> std::shared_ptr<const certified::ScalarField> {
+    using What = typename PointPlatformField<ChartModel>::What;
+    const std::pair<const char*, What> suffixes[] = {
+        {".cos2eps", What::cos2eps}, {".vratio", What::ratio2}, {".kappa", What::kappa}, {".det", What::det}};
+    for (const auto& [suffix, what] : suffixes) {
+      if (key == kind + suffix) {
+        return std::make_shared<certified::TemplateField<PointPlatformField<ChartModel>>>(PointPlatformField<ChartModel>{model, what});
+      }
+    }
+    return nullptr;
+  };
+}
+
 // The capability CriterionFields of a point platform (valid while the mechanism lives).
 template <class Model> class PointPlatformFields final : public CriterionFields {
  public:
@@ -239,6 +260,13 @@ template <class Model> class PointPlatformFields final : public CriterionFields 
   }
   CriterionField singular_determinant(const mechanisms::Criteria& /*criteria*/) const override {
     return point_platform_singular(model_, kind_);
+  }
+  std::optional<Charts> charts(const geometry::Region& workspace) const override {
+    if constexpr (requires { model_.charts(workspace); }) {
+      return model_.charts(workspace);
+    } else {
+      return std::nullopt;
+    }
   }
 
  private:

@@ -96,6 +96,30 @@ struct CriterionFields {
     std::vector<WorkspaceCut> cuts;
   };
   virtual std::optional<WorkspaceSets> workspace_sets() const { return std::nullopt; }
+  /// Charts (docs/theory/level_sets.md, "Charts"): where the fields are
+  /// singular on W's boundary (a leg stretched) or at a point of W (a base
+  /// joint of equal links), every level curve ends there and no cell touching
+  /// it can be traced. W is then cut into `rest`, traced in (x, y), and parts
+  /// each traced in a chart whose coordinates make the fields smooth up to the
+  /// singular set, with the chart's area element. Absent (the default): W is
+  /// traced in (x, y) alone.
+  struct Chart {
+    geometry::Box window;                 // in the chart's coordinates (u, v)
+    certified::AreaWeight weight;         // dA = ρ du dv
+    std::vector<WorkspaceCut> cuts;       // the chart's part of W: ⋂ {F_k <= level_k} in the window
+    double overlap = 0.0;                 // a bound on the area the window counts twice (taken off lower bounds)
+    std::function<geometry::Point(geometry::Point)> to_plane;  // (u, v) -> (x, y), for the traced curves
+    /// The surrogate of the criterion field with this key in the chart's
+    /// coordinates; null when the chart does not have it.
+    std::function<std::shared_ptr<const certified::ScalarField>(const std::string& key)> field;
+  };
+  struct Charts {
+    geometry::Region rest;                // W minus the charts' parts (exact)
+    certified::WithinTest rest_test;      // boxes against rest (inside only if box ⊆ rest)
+    std::vector<Chart> charts;
+  };
+  /// `workspace`: W (the exact Mechanism::workspace()).
+  virtual std::optional<Charts> charts(const geometry::Region& /*workspace*/) const { return std::nullopt; }
 };
 
 /// The fields of a criterion for a design (a mechanism file is one), one per limited leg (their

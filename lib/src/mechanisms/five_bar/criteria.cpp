@@ -4,6 +4,7 @@
 #include "mechanisms/five_bar/criteria.hpp"
 
 #include "criteria/support.hpp"
+#include "pkmws/geometry/primitives.hpp"
 
 namespace pkmws::criteria {
 
@@ -57,30 +58,36 @@ struct FiveBarCosEps {
     g.uy = one_minus_a * g.wy - s[i] * (b * g.wx);
     return g;
   }
-  template <class T> T cos_eps(const T& x, const T& y) const {
-    const Leg<T> g0 = leg(0, x, y), g1 = leg(1, x, y);
+  template <class T> T cos_eps(const T& x, const T& y) const { return cos_eps_of(leg(0, x, y), leg(1, x, y)); }
+  template <class T> T cos_eps_of(const Leg<T>& g0, const Leg<T>& g1) const {
     return (g0.ux * g1.ux + g0.uy * g1.uy) / (T(l2[0]) * T(l2[1]));
   }
   // det A = u_1 x u_2: zero where the distal links are aligned (type 2,
   // [Briot]: A's rows are the distal directions; derived).
-  template <class T> T singular_det(const T& x, const T& y) const {
-    const Leg<T> g0 = leg(0, x, y), g1 = leg(1, x, y);
-    return g0.ux * g1.uy - g0.uy * g1.ux;
-  }
+  template <class T> T singular_det(const T& x, const T& y) const { return singular_det_of(leg(0, x, y), leg(1, x, y)); }
+  template <class T> static T singular_det_of(const Leg<T>& g0, const Leg<T>& g1) { return g0.ux * g1.uy - g0.uy * g1.ux; }
   // Rows of dq/dC: differentiating |C - B_i|² = l_i2² with B_i - A_i = w - u_i
   // gives dq_i = u_i . dC / (w_i x u_i) (the eval's B⁻¹A, docs/theory/five_bar.md).
   // As u_i / (w_i x u_i) (the cross product vanishes at a leg's type-1 singularity).
-  template <class T> Rows2<T> rows(const T& x, const T& y) const {
-    const Leg<T> g0 = leg(0, x, y), g1 = leg(1, x, y);
+  template <class T> Rows2<T> rows(const T& x, const T& y) const { return rows_of(leg(0, x, y), leg(1, x, y)); }
+  template <class T> static Rows2<T> rows_of(const Leg<T>& g0, const Leg<T>& g1) {
     return {g0.ux, g0.uy, g1.ux, g1.uy, g0.wx * g0.uy - g0.wy * g0.ux, g1.wx * g1.uy - g1.wy * g1.ux};
   }
+  // Leg j strictly inside its annulus (and off its base) over a box: C² there.
+  CellState leg_domain(std::size_t j, const Interval& r2) const {
+    if (r2.lo > r_out2[j] || r2.hi < r_in2[j]) return CellState::outside;
+    return r2.hi < r_out2[j] && r2.lo > r_in2[j] && r2.lo > 0.0 ? CellState::inside : CellState::undecided;
+  }
+  // The charts at the stretched legs' circles and at the base joints of equal
+  // links (defined after FiveBarChart).
+  std::optional<CriterionFields::Charts> charts(const geometry::Region& workspace) const;
   // Smooth where every leg is strictly inside its annulus (D > 0, r > 0).
   CellState domain(const Box& b) const {
     bool inside = true;
     for (std::size_t i = 0; i < 2; ++i) {
-      const Interval r2 = dist2(b, base[i]);
-      if (r2.lo > r_out2[i] || r2.hi < r_in2[i]) return CellState::outside;
-      inside = inside && r2.hi < r_out2[i] && r2.lo > r_in2[i] && r2.lo > 0.0;
+      const CellState c = leg_domain(i, dist2(b, base[i]));
+      if (c == CellState::outside) return c;
+      inside = inside && c == CellState::inside;
     }
     return inside ? CellState::inside : CellState::undecided;
   }
@@ -132,6 +139,223 @@ struct FiveBarCosEps {
   static constexpr double inf_angle = std::numeric_limits<double>::infinity();
 };
 
+
+// A chart about the base A_k of leg k (docs/theory/level_sets.md, "Charts"):
+// θ = c u is the angle of C - A_k from the unit direction d, and
+//  - at the circle where leg k is stretched (r = R = l1 + l2, W's boundary):
+//    v = s = √(R² - r²), so that √D = s √(r² - (l1 - l2)²) = s √(4 l1 l2 - s²)
+//    is smooth across s = 0 (the law of cosines of the inverse kinematics,
+//    docs/theory/five_bar.md eq. IK); dA = r dr dθ = c s ds du;
+//  - at the base joint of equal links (C = A_k, every level curve ends there):
+//    v = r, where √D / (2r) = √(R² - r²) / 2 and (1 - a) r = r / 2 are smooth
+//    at r = 0; dA = c r dr du.
+// Leg k's vectors come from (u, v) directly, the other leg's from C(u, v).
+struct FiveBarChart {
+  FiveBarCosEps plane;
+  std::size_t k = 0;
+  bool at_base = false;
+  double c = 1.0;    // θ = c u
+  Point d{1.0, 0.0};  // θ = 0
+
+  template <class T> FiveBarCosEps::Leg<T> chart_leg(const T& u, const T& v, T& x, T& y) const {
+    using certified::cos;
+    using certified::max;
+    using certified::sin;
+    using certified::sqr;
+    using certified::sqrt;
+    using std::cos;
+    using std::sin;
+    using std::sqrt;
+    const T th = c * u;
+    const T ct = cos(th), st = sin(th);
+    const T ex = ct * d.x - st * d.y, ey = ct * d.y + st * d.x;
+    const T p = T(plane.l1[k]), q = T(plane.l2[k]);
+    T r, alpha, beta;  // alpha = (1 - a) r, beta = √D / (2r)
+    if (at_base) {  // l1 = l2
+      r = v;
+      alpha = 0.5 * v;
+      beta = 0.5 * sqrt(max(sqr(p + q) - sqr(v), 0.0));
+    } else {
+      r = sqrt(max(sqr(p + q) - sqr(v), 0.0));
+      alpha = (sqr(r) - (p - q) * (p + q)) / (2.0 * r);
+      beta = v * sqrt(max(4.0 * p * q - sqr(v), 0.0)) / (2.0 * r);
+    }
+    FiveBarCosEps::Leg<T> g{r * ex, r * ey, T(0.0), T(0.0)};
+    x = plane.base[k].x + g.wx;
+    y = plane.base[k].y + g.wy;
+    const double s = plane.s[k];
+    g.ux = alpha * ex + s * (beta * ey);
+    g.uy = alpha * ey - s * (beta * ex);
+    return g;
+  }
+  template <class T> std::array<FiveBarCosEps::Leg<T>, 2> legs(const T& u, const T& v) const {
+    T x, y;
+    const FiveBarCosEps::Leg<T> gk = chart_leg(u, v, x, y);
+    const FiveBarCosEps::Leg<T> gj = plane.leg(1 - k, x, y);
+    return k == 0 ? std::array{gk, gj} : std::array{gj, gk};
+  }
+  template <class T> Point to_plane(double u, double v) const {
+    T x, y;
+    chart_leg(T(u), T(v), x, y);
+    return {x, y};
+  }
+  template <class T> T cos_eps(const T& u, const T& v) const {
+    const auto g = legs(u, v);
+    return plane.cos_eps_of(g[0], g[1]);
+  }
+  template <class T> T singular_det(const T& u, const T& v) const {
+    const auto g = legs(u, v);
+    return FiveBarCosEps::singular_det_of(g[0], g[1]);
+  }
+  template <class T> Rows2<T> rows(const T& u, const T& v) const {
+    const auto g = legs(u, v);
+    return FiveBarCosEps::rows_of(g[0], g[1]);
+  }
+  // C(u, v) over a box, and whether leg k's formulas are smooth there
+  // (|v| < R at the base, |v| < √(4 l1 l2) <= R at the circle: then r > 0).
+  bool chart_smooth(const Box& b) const {
+    const double vmax = std::max(std::abs(b.min.y), std::abs(b.max.y));
+    const double lim = at_base ? plane.l1[k] + plane.l2[k] : 2.0 * std::sqrt(plane.l1[k] * plane.l2[k]);
+    return vmax < lim * (1.0 - 1e-9);
+  }
+  Interval image_dist2(const Box& b, Point centre) const {
+    Interval x, y;
+    chart_leg(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y), x, y);
+    return sqr(x - Interval(centre.x)) + sqr(y - Interval(centre.y));
+  }
+  CellState domain(const Box& b) const {
+    if (!chart_smooth(b)) return CellState::undecided;
+    return plane.leg_domain(1 - k, image_dist2(b, plane.base[1 - k]));
+  }
+  // The window is the chart's domain; W's boundary is in the cuts.
+  CellState within(const Box&) const { return CellState::inside; }
+};
+
+// A condition of a chart's part of W, as a field F <= 0 in (u, v):
+// `band`: v² + ρ² - R_k² (r_k >= ρ, the band at leg k's circle); `below`:
+// v - ρ (r <= ρ at a base joint); `disk`: σ (|C - centre|² - ρ²) with ρ = ρa + ρb
+// (σ = +1: inside the disk, -1: outside).
+struct FiveBarChartCut {
+  FiveBarChart chart;
+  enum class Kind { band, below, disk } kind = Kind::disk;
+  Point centre{};
+  double rho_a = 0.0, rho_b = 0.0;
+  double sign = 1.0;
+  template <class T> T eval(const T& u, const T& v) const {
+    using certified::sqr;
+    const T rho = T(rho_a) + T(rho_b);
+    if (kind == Kind::below) return v - rho;
+    if (kind == Kind::band) {
+      const T big = T(chart.plane.l1[chart.k]) + T(chart.plane.l2[chart.k]);
+      return sqr(v) + sqr(rho) - sqr(big);
+    }
+    T x, y;
+    chart.chart_leg(u, v, x, y);
+    return sign * (sqr(x - centre.x) + sqr(y - centre.y) - sqr(rho));
+  }
+  CellState domain(const Box& b) const { return chart.chart_smooth(b) ? CellState::inside : CellState::undecided; }
+};
+
+std::optional<CriterionFields::Charts> FiveBarCosEps::charts(const geometry::Region& workspace) const {
+  for (const auto& l : limits) {
+    if (l) return std::nullopt;  // crank limits: W is not the two annuli alone
+  }
+  CriterionFields::Charts out;
+  // Bands at the circles r_k = R_k (width R_k / 32), disks at the bases of equal links (radius R_k / 32).
+  std::array<double, 2> R{}, rho{}, rho_base{};
+  std::array<bool, 2> band{}, at_base{};
+  const double dist = std::hypot(base[1].x - base[0].x, base[1].y - base[0].y);
+  for (std::size_t k = 0; k < 2; ++k) {
+    R[k] = l1[k] + l2[k];
+    rho[k] = R[k] * (31.0 / 32.0);
+    band[k] = rho[k] > std::abs(l1[k] - l2[k]) && dist > 0.0;
+    rho_base[k] = R[k] / 32.0;
+  }
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::size_t j = 1 - k;
+    // The base disk lies inside the rest: off the other leg's band and its inner circle.
+    at_base[k] = l1[k] == l2[k] && dist + rho_base[k] < (band[j] ? rho[j] : R[j]) &&
+                 dist - rho_base[k] > std::abs(l1[j] - l2[j]) && rho_base[k] < rho[k];
+  }
+  if (!band[0] && !band[1] && !at_base[0] && !at_base[1]) return std::nullopt;
+  geometry::Region rest = workspace;
+  for (std::size_t k = 0; k < 2; ++k) {
+    if (band[k]) rest = rest.intersect(geometry::disk(base[k], rho[k]));
+  }
+  for (std::size_t k = 0; k < 2; ++k) {
+    if (at_base[k]) rest = rest.subtract(geometry::disk(base[k], rho_base[k]));
+  }
+  out.rest = std::move(rest);
+  out.rest_test = [self = *this, band, rho, at_base, rho_base](const Box& b) {
+    CellState c = self.within(b);
+    if (c == CellState::outside) return c;
+    for (std::size_t k = 0; k < 2; ++k) {
+      const Interval r2 = dist2(b, self.base[k]);
+      if (band[k]) {
+        const Interval lim = sqr(Interval(rho[k]));
+        if (r2.lo > lim.hi) return CellState::outside;
+        if (!(r2.hi < lim.lo)) c = CellState::undecided;
+      }
+      if (at_base[k]) {
+        const Interval lim = sqr(Interval(rho_base[k]));
+        if (r2.hi < lim.lo) return CellState::outside;
+        if (!(r2.lo > lim.hi)) c = CellState::undecided;
+      }
+    }
+    return c;
+  };
+  constexpr double pi_up = 3.1415926535897936;  // the double above π
+  // A window over angles [-θm, θm] (θm = π: the full turn, overlapping by
+  // under 1e-14 rad) for radii [0, vmax] of a chart with θ = c u.
+  const auto make_chart = [&](std::size_t k, bool base_chart, double theta_max, double vmax, double band_area_per_rad) {
+    const double scale = base_chart ? rho_base[k] : R[k];  // u in lengths: arc length at that radius
+    const std::size_t j = 1 - k;
+    const FiveBarChart m{*this, k, base_chart, 1.0 / scale,
+                         Point{(base[j].x - base[k].x) / dist, (base[j].y - base[k].y) / dist}};
+    const bool full = theta_max >= 3.14;
+    const double umax = (full ? pi_up * (1.0 + 4e-16) : theta_max) * scale;
+    CriterionFields::Chart ch;
+    ch.window = Box{{-umax, 0.0}, {umax, vmax * (1.0 + 1e-6)}};
+    ch.weight = certified::AreaWeight{0.0, 0.0, m.c};
+    ch.overlap = full ? 1e-14 * band_area_per_rad : 0.0;
+    ch.to_plane = [m](Point p) { return m.template to_plane<double>(p.x, p.y); };
+    ch.field = point_platform_chart_fields(m, "five_bar");
+    const auto cut = [&](FiveBarChartCut::Kind kind, Point centre, double ra, double rb, double sign) {
+      FiveBarChartCut f{m, kind, centre, ra, rb, sign};
+      ch.cuts.push_back({std::make_shared<certified::TemplateField<FiveBarChartCut>>(f), 0.0});
+    };
+    if (base_chart) {
+      cut(FiveBarChartCut::Kind::below, {}, rho_base[k], 0.0, 1.0);
+    } else {
+      cut(FiveBarChartCut::Kind::band, {}, rho[k], 0.0, 1.0);
+      cut(FiveBarChartCut::Kind::disk, base[j], l1[j], l2[j], 1.0);                       // r_j <= R_j
+      if (l1[j] != l2[j]) cut(FiveBarChartCut::Kind::disk, base[j], l1[j], -l2[j], -1.0);  // r_j >= |l1 - l2|
+      if (k == 1 && band[0]) cut(FiveBarChartCut::Kind::disk, base[0], rho[0], 0.0, 1.0);  // not in band 0
+      for (std::size_t b = 0; b < 2; ++b) {
+        const double db = b == k ? 0.0 : dist;
+        if (at_base[b] && db + rho_base[b] >= rho[k]) cut(FiveBarChartCut::Kind::disk, base[b], rho_base[b], 0.0, -1.0);
+      }
+    }
+    out.charts.push_back(std::move(ch));
+  };
+  for (std::size_t k = 0; k < 2; ++k) {
+    if (!band[k]) continue;
+    const std::size_t j = 1 - k;
+    // Band k meets disk j at angles up to θm from d (at its inner radius ρ_k,
+    // where cos θ = (ρ² + dist² - R_j²) / (2 ρ dist) is smallest when A_k is inside disk j).
+    double theta_max = 4.0;
+    if (dist < R[j]) {
+      const double cm = (rho[k] * rho[k] + dist * dist - R[j] * R[j]) / (2.0 * rho[k] * dist);
+      if (cm > -1.0) theta_max = std::acos(std::min(1.0, cm)) + 0.02;
+    }
+    make_chart(k, false, std::min(theta_max, 4.0), std::sqrt((R[k] - rho[k]) * (R[k] + rho[k])),
+               0.5 * (R[k] - rho[k]) * (R[k] + rho[k]));
+  }
+  for (std::size_t k = 0; k < 2; ++k) {
+    if (at_base[k]) make_chart(k, true, 4.0, rho_base[k], 0.5 * rho_base[k] * rho_base[k]);
+  }
+  return out;
+}
 }  // namespace
 
 CriterionField five_bar_pressure_angle(const mechanisms::FiveBar& m) {

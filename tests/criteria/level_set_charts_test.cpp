@@ -1,0 +1,140 @@
+// Charts of the level sets (docs/theory/level_sets.md, "Charts"): where the
+// five-bar's fields are singular on W's boundary (a leg stretched) and at the
+// base joints of equal links, W is cut into a part traced in (x, y) and polar
+// charts. Checks: the partition itself (a limit that never binds gives W's
+// exact area), the charted bounds against the plane's (the same fields traced
+// in (x, y) alone: two valid enclosures of one area must meet) and against a
+// dense grid of the mechanism's own evaluation, on the DexTAR's working modes
+// and on random five-bars with equal and unequal links.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "pkmws/criteria/fields.hpp"
+#include "pkmws/geometry/primitives.hpp"
+#include "pkmws/io/mechanism_file.hpp"
+#include "support/fixtures.hpp"
+
+namespace {
+
+using namespace pkmws;
+using geometry::Box;
+using geometry::Point;
+
+std::string num(double v) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.17g", v);
+  return s;
+}
+
+io::MechanismFile five_bar(double a, double l11, double l12, double l21, double l22, int m1, int m2, double alpha) {
+  const std::string text = R"({"name": "five-bar", "mechanism": "five_bar", "units": "m",
+      "base": [[)" + num(-a) + R"(, 0], [)" + num(a) + R"(, 0]], "proximal": [)" + num(l11) + ", " + num(l21) +
+                           R"(], "distal": [)" + num(l12) + ", " + num(l22) + R"(], "working_mode": [)" +
+                           std::to_string(m1) + ", " + std::to_string(m2) +
+                           R"(], "criteria": {"max_pressure_angle_deg": )" + num(alpha) + "}}";
+  return io::parse_mechanism_text(text, "five_bar.json");
+}
+
+// The charted bounds (limited_workspace without regions) and the plane's
+// (the same constraints traced in (x, y) over W alone).
+struct Both {
+  certified::CertifiedRegion charted, plane;
+};
+Both both(const io::MechanismFile& f, double tol) {
+  certified::LevelSetOptions o;
+  o.relative_tolerance = tol;
+  Both out;
+  out.charted = criteria::limited_workspace(f, criteria::file_limits(f), o).region;
+  const auto fields = criteria::fields_for(f, "pressure_angle");
+  std::vector<certified::Constraint> cs;
+  for (const auto& c : fields) cs.push_back({c.surrogate.get(), c.level(f.criteria.max_pressure_angle_deg.value())});
+  out.plane = certified::sublevel_set(cs, f.model->workspace(), fields.front().within_test, o).region;
+  return out;
+}
+
+TEST(LevelSetCharts, FiveBarsHaveChartsWhereTheirFieldsAreSingular) {
+  const auto dextar = five_bar(0.125, 0.2, 0.2, 0.2, 0.2, 1, -1, 40.0);
+  const auto fields = dextar.model->capability<criteria::CriterionFields>();
+  ASSERT_TRUE(fields);
+  const auto charts = fields->charts(dextar.model->workspace());
+  ASSERT_TRUE(charts);
+  EXPECT_EQ(charts->charts.size(), 4u);  // two bands, two base disks
+  // Unequal links: the bands only.
+  const auto other = five_bar(0.1, 0.25, 0.2, 0.22, 0.27, 1, 1, 40.0);
+  const auto c2 = other.model->capability<criteria::CriterionFields>()->charts(other.model->workspace());
+  ASSERT_TRUE(c2);
+  EXPECT_EQ(c2->charts.size(), 2u);
+  // The charts map onto the plane as described: the band chart's v = 0 is the circle r = l1 + l2.
+  const auto& band = charts->charts.front();
+  const Point p = band.to_plane({0.1, 0.0});
+  EXPECT_NEAR(std::hypot(p.x + 0.125, p.y), 0.4, 1e-15);
+}
+
+TEST(LevelSetCharts, TheRestAndTheChartsPartsAddUpToTheWorkspace) {
+  // The charts' parts (their cuts alone, traced in the charts' coordinates
+  // with their area elements) and the exact rest partition W: their areas
+  // add up to W's exact area.
+  for (const auto& f : {five_bar(0.125, 0.2, 0.2, 0.2, 0.2, 1, -1, 40.0), five_bar(0.1, 0.25, 0.2, 0.22, 0.27, -1, 1, 40.0),
+                        five_bar(0.08, 0.21, 0.21, 0.26, 0.26, 1, 1, 40.0)}) {
+    const geometry::Region w = f.model->workspace();
+    const auto charts = f.model->capability<criteria::CriterionFields>()->charts(w);
+    ASSERT_TRUE(charts);
+    double lower = charts->rest.area(), upper = lower;
+    for (const auto& chart : charts->charts) {
+      std::vector<certified::Constraint> cs;
+      for (const auto& cut : chart.cuts) cs.push_back({cut.field.get(), cut.level});
+      certified::LevelSetOptions o;
+      o.relative_tolerance = 1e-10;
+      o.weight = chart.weight;
+      const auto r = certified::sublevel_set(cs, geometry::rectangle(chart.window),
+                                             [](const Box&) { return certified::CellState::inside; }, o);
+      EXPECT_GT(r.region.area_lower, 0.0);
+      lower += r.region.area_lower - chart.overlap;
+      upper += r.region.area_upper;
+    }
+    const double exact = w.area();
+    EXPECT_LE(lower, exact * (1.0 + 1e-12)) << f.name;
+    EXPECT_GE(upper, exact * (1.0 - 1e-12)) << f.name;
+    EXPECT_LE(upper - lower, 1e-8 * exact) << f.name;
+  }
+}
+
+TEST(LevelSetCharts, ChartedBoundsMeetThePlanesAndHoldADenseGrid) {
+  std::vector<io::MechanismFile> files;
+  files.push_back(five_bar(0.125, 0.2, 0.2, 0.2, 0.2, 1, 1, 20.0));  // DexTAR
+  files.push_back(five_bar(0.125, 0.2, 0.2, 0.2, 0.2, 1, -1, 80.0));
+  std::mt19937 rng(303);
+  std::uniform_real_distribution<double> half_span(0.05, 0.2), link(0.15, 0.3), alpha(25.0, 75.0);
+  for (int k = 0; k < 4; ++k) {
+    const double a = half_span(rng), l1 = link(rng), l2 = link(rng), l3 = link(rng);
+    // Designs 0 and 1: equal links in each leg (base charts); 2 and 3: unequal.
+    const double l4 = link(rng);
+    files.push_back(k < 2 ? five_bar(a, l1, l1, l2, l2, k == 0 ? 1 : -1, 1, alpha(rng))
+                          : five_bar(a, l1, l3, l2, l4, 1, k == 2 ? -1 : 1, alpha(rng)));
+  }
+  for (const auto& f : files) {
+    const double tol = 1e-6;
+    const Both b = both(f, tol);
+    const auto& c = b.charted;
+    EXPECT_LE(c.width(), tol * c.area_upper) << f.name;
+    // Two valid enclosures of one area meet.
+    EXPECT_LE(c.area_lower, b.plane.area_upper) << f.name;
+    EXPECT_LE(b.plane.area_lower, c.area_upper) << f.name;
+    // A 600² grid of the mechanism's own evaluation (not the surrogate).
+    const auto fields = criteria::fields_for(f, "pressure_angle");
+    const double limit = f.criteria.max_pressure_angle_deg.value();
+    const Box box = f.model->workspace().bbox();
+    const int n = 600;
+    const double grid = test::grid_area(box, n, [&](Point p) { return fields.front().value(p) <= limit; });
+    const double h = std::max(box.width(), box.height()) / n;
+    const double slack = (box.width() + box.height()) * h;
+    EXPECT_LE(c.area_lower, grid + slack) << f.name << " grid " << grid;
+    EXPECT_GE(c.area_upper, grid - slack) << f.name << " grid " << grid;
+  }
+}
+
+}  // namespace
