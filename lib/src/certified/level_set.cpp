@@ -445,12 +445,11 @@ bool Tracer::run(CellTrace& out) {
   return true;
 }
 
-// The gradient over a box: the natural enclosure, intersected with the centred
+// The gradient over a box: the natural enclosure, tightened by the centred
 // form ∇F(c) + H(B)(B - c) (H enclosed over B, ∇F(c) over the point c) when
 // the box lies in F's smooth domain: its overestimation shrinks like the box's
-// width squared, so larger cells prove the level curve a graph.
-Grad<Interval> grad_enclosure(const ScalarField& f, const Box& b) {
-  Grad<Interval> g = f.grad(b);
+// width squared. It costs a jet; taken only where the natural form fails.
+Grad<Interval> centred_gradient(const ScalarField& f, const Box& b, Grad<Interval> g) {
   if (f.domain(b) != CellState::inside) return g;
   const Point c{0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)};
   const Jet<Interval> h = f.jet(b);
@@ -464,7 +463,10 @@ Grad<Interval> grad_enclosure(const ScalarField& f, const Box& b) {
 
 CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double tau, const AreaWeight& weight) {
   CellTrace t;
-  const Grad<Interval> j = grad_enclosure(f, cell);
+  Grad<Interval> j = f.grad(cell);
+  // The centred form where a component's sign is unknown: it decides which
+  // graph direction (the steeper one) is taken, and a poor choice costs pieces.
+  if (j.dx.contains_zero() || j.dy.contains_zero()) j = centred_gradient(f, cell, j);
   if (!j.dx.finite() || !j.dy.finite()) return t;
   const bool y_ok = !j.dy.contains_zero(), x_ok = !j.dx.contains_zero();
   bool swapped;
@@ -481,17 +483,26 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
     if (fv.contains_zero() || !fu.finite()) return inf;
     return fu.mag() / fv.mig() * (1.0 + 1e-12);
   };
-  // Extent E of B' with L(B') du <= E: two tries.
+  // Extent E of B' with L(B') du <= E: a few tries, each with the natural
+  // gradient and, where that fails, the centred one.
   double lipschitz = slope(j);
   double extent = 1.5 * lipschitz * du + 1e-12 * du;
+  const Grad<double> jc = f.grad(Point{0.5 * (cell.min.x + cell.max.x), 0.5 * (cell.min.y + cell.max.y)});
+  const double centre_slope = std::abs(swapped ? jc.dy : jc.dx) / std::max(std::abs(swapped ? jc.dx : jc.dy), 1e-300);
   bool ok = false;
   int sgn = 1;
   for (int attempt = 0; attempt < 4 && std::isfinite(extent); ++attempt) {
     const Box ext = swapped ? make_box(cell.min.x - extent, cell.min.y, cell.max.x + extent, cell.max.y)
                             : make_box(cell.min.x, cell.min.y - extent, cell.max.x, cell.max.y + extent);
     if (f.domain(ext) != CellState::inside) return t;
-    const Grad<Interval> je = grad_enclosure(f, ext);
-    const double le = slope(je);
+    Grad<Interval> je = f.grad(ext);
+    double le = slope(je);
+    // The centred form also where the natural L is far above the slope at the
+    // centre: a tight L keeps the pieces' boxes (and their g'') small.
+    if (!(le * du <= extent) || le > 2.0 * centre_slope + 1e-3) {
+      je = centred_gradient(f, ext, je);
+      le = slope(je);
+    }
     if (!std::isfinite(le)) return t;
     if (le * du <= extent) {
       lipschitz = le;
