@@ -6,6 +6,9 @@
 //    1e-6 (the time is the benchmark's);
 //  - levels/1e-9/<stem>: the same at 1e-9, one thread, with a 10 s deadline
 //    (counter `stopped` = 1 when it was reached: the bounds are then wider);
+//  - levels/plane/<stem>: for the files whose fields have charts (the
+//    five-bars), the 1e-6 case traced in (x, y) alone, as before the charts
+//    (the old method beside the new);
 //  - side by side (threads:1 cases), a uniform grid of the same criteria (every
 //    surrogate field of the file's limits at its level, with the 3-RPR's
 //    assembly-mode constraint, at cell centres, in C++): the first N (steps
@@ -32,10 +35,11 @@ using namespace pkmws;
 using Clock = std::chrono::steady_clock;
 
 criteria::LimitedWorkspace certified_area(const io::MechanismFile& file, double tolerance, int threads,
-                                          double seconds = 0.0) {
+                                          double seconds = 0.0, bool charts = true) {
   certified::LevelSetOptions o;
   o.relative_tolerance = tolerance;
   o.threads = threads;
+  o.charts = charts;
   if (seconds > 0.0) {
     o.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
   }
@@ -78,12 +82,13 @@ double grid_area(const PointTest& in, const geometry::Box& w, int n) {
   return static_cast<double>(count) * hx * hy;
 }
 
-void certified_case(benchmark::State& state, const std::string& stem, double tolerance, int threads) {
+void certified_case(benchmark::State& state, const std::string& stem, double tolerance, int threads,
+                    bool charts = true) {
   const io::MechanismFile file = io::load_mechanism(bench::dataset(stem));
   const double deadline = tolerance < 1e-7 ? 10.0 : 0.0;
   criteria::LimitedWorkspace r;
   for (auto _ : state) {
-    r = certified_area(file, tolerance, threads, deadline);
+    r = certified_area(file, tolerance, threads, deadline, charts);
   }
   const double area = r.region.area_estimate();
   state.counters["area_lower"] = r.region.area_lower;
@@ -91,7 +96,7 @@ void certified_case(benchmark::State& state, const std::string& stem, double tol
   state.counters["rel_width"] = area > 0.0 ? r.region.width() / area : 0.0;
   state.counters["stopped"] = r.detail.stopped ? 1.0 : 0.0;
   state.counters["undecided_cells"] = static_cast<double>(r.detail.undecided_cells);
-  if (threads != 1 || tolerance < 1e-7 || !(area > 0.0)) return;
+  if (threads != 1 || tolerance < 1e-7 || !charts || !(area > 0.0)) return;
   // The grid, side by side (not timed by the benchmark loop).
   const PointTest in = point_test(file);
   const geometry::Box w = file.model->workspace().bbox();
@@ -115,9 +120,9 @@ void certified_case(benchmark::State& state, const std::string& stem, double tol
 
 // A file whose criteria have no certified region here (e.g. a 3-RPR without
 // leg limits: its workspace is the plane) is reported, not fatal.
-void BM_Certified(benchmark::State& state, std::string stem, double tolerance, int threads) {
+void BM_Certified(benchmark::State& state, std::string stem, double tolerance, int threads, bool charts) {
   try {
-    certified_case(state, stem, tolerance, threads);
+    certified_case(state, stem, tolerance, threads, charts);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
   }
@@ -132,12 +137,18 @@ void pkmws::bench::register_level_set_benchmarks() {
     if (!file.criteria.any()) continue;
     for (int threads : {1, 2}) {
       benchmark::RegisterBenchmark(("levels/1e-6/" + stem + "/threads:" + std::to_string(threads)).c_str(),
-                                   BM_Certified, stem, 1e-6, threads)
+                                   BM_Certified, stem, 1e-6, threads, true)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
     }
-    benchmark::RegisterBenchmark(("levels/1e-9/" + stem).c_str(), BM_Certified, stem, 1e-9, 1)
+    benchmark::RegisterBenchmark(("levels/1e-9/" + stem).c_str(), BM_Certified, stem, 1e-9, 1, true)
         ->Unit(benchmark::kMillisecond)
         ->Iterations(1);
+    const auto fields = file.model->capability<criteria::CriterionFields>();
+    if (fields && fields->charts(file.model->workspace())) {
+      benchmark::RegisterBenchmark(("levels/plane/" + stem).c_str(), BM_Certified, stem, 1e-6, 1, false)
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(1);
+    }
   }
 }

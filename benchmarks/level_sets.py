@@ -50,6 +50,7 @@ def main():
     for stem in sorted(cases):
         c = cases[stem]
         one, two, nine = c.get("1e-6/threads:1"), c.get("1e-6/threads:2"), c.get("1e-9")
+        plane = c.get("plane")
         if not one:
             continue
         t1 = seconds(one)
@@ -63,6 +64,8 @@ def main():
             nine_txt = f"{fmt_time(t9)}, {w9:.1e}" + (" (deadline)" if nine["stopped"] else "")
         else:
             nine_txt = "–"
+        plane_txt = (f"{fmt_time(seconds(plane))}, {plane['rel_width']:.1e}, "
+                     f"{int(plane['undecided_cells'])}" if plane else "–")
         ok6 = w1 <= 1e-6 and t1 <= 0.1
         met6 += ok6
         hit_n = int(one.get("grid_first_hit_N", 0))
@@ -80,7 +83,7 @@ def main():
             ratio_txt = f"> {hit_s / t1:.2g}"
         rows.append(
             f"| `{stem}` | {one['area_lower']:.10g} … {one['area_upper']:.10g} | {w1:.1e} | {fmt_time(t1)} | "
-            f"{speed} | {nine_txt} | {grid_txt} | {ratio_txt} | {one.get('grid_N_for_1e-6', 0):.3g} |")
+            f"{speed} | {plane_txt} | {nine_txt} | {grid_txt} | {ratio_txt} | {one.get('grid_N_for_1e-6', 0):.3g} |")
     n = len(rows)
     lines = [
         HEADING,
@@ -88,6 +91,8 @@ def main():
         "`benchmarks/bench_levels.cpp` (`levels/...` cases of `pkmws_bench`, one run each), written by "
         "`benchmarks/level_sets.py`. Every bundled dataset with `criteria`: the certified area bounds of the "
         "criteria-limited workspace at a relative width of 1e-6 on one thread (time, and the speed-up on two), "
+        "the five-bars' 1e-6 case traced in (x, y) alone as before the charts (the old method beside the new: "
+        "time, width, undecided cells; docs/theory/level_sets.md, \"Charts\"), "
         "the same at 1e-9 (one thread, stopped at 10 s: then the width reached is shown), and side by side a "
         "uniform grid of the same criteria (every surrogate field of the file's limits at its level — the same "
         "sets — with the 3-RPR's assembly mode, at cell centres, in C++ like a numpy grid of the formulas): the first N (steps of √2 from 64) whose "
@@ -98,14 +103,16 @@ def main():
         f"Targets: 1e-6 in ≤ 100 ms on one thread: **{met6} of {n}** cases; 1e-9 in ≤ 1 s: **{met9} of {n}**; "
         f"faster than the grid's first hit (or than its 8192² grid, when none hit): **{beat} of {n}**.",
         "",
-        "| dataset | certified bounds (1e-6) | width | 1 thread | 2 threads | 1e-9: time, width | grid first hit "
-        "| grid / certified | grid N for 1e-6 |",
-        "|---|---|---:|---:|---:|---:|---:|---:|---:|",
+        "| dataset | certified bounds (1e-6) | width | 1 thread | 2 threads | without charts: time, width, undecided "
+        "| 1e-9: time, width | grid first hit | grid / certified | grid N for 1e-6 |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|",
         *rows,
         "",
-        "Where the time goes (docs/theory/level_sets.md): the DexTAR cases' undecided cells sit where the level "
-        "curve meets W's boundary tangentially (the field has a square-root singularity there: the undecided area "
-        "shrinks like h^{3/2}) and at the base joints, where every level curve ends.",
+        "Where the time goes (docs/theory/level_sets.md): without charts, the DexTAR cases' undecided cells sit "
+        "where the level curve meets W's boundary tangentially (the field has a square-root singularity there) "
+        "and at the base joints, where every level curve ends; the charts trace both like any curve. What is left "
+        "is the traced cells' own cost: about one cell per cover leaf along each curve, each with a few certified "
+        "root brackets and interval jets.",
     ]
     update_report(a.report, HEADING, "\n".join(lines))
     print(f"level_sets.py: wrote {n} cases to {a.report}")

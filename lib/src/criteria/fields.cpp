@@ -326,11 +326,12 @@ LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::ve
     // Charts where the fields are singular on W's boundary or at a point of W
     // (the bounds only: regions are built in the plane).
     std::optional<CriterionFields::Charts> charts;
-    if (!sets && !o.build_regions) {
+    if (!sets && !o.build_regions && o.charts) {
       if (const auto fields = file.model->capability<CriterionFields>()) charts = fields->charts(within);
     }
     certified::LevelSetResult r =
         charts ? charted_sublevel_set(cs, keys, *charts, o) : certified::sublevel_set(cs, within, within_test, o);
+    out.charted = charts.has_value();
     out.region = std::move(r.region);
     out.curves = std::move(r.curves);
     out.detail = std::move(r);

@@ -72,7 +72,9 @@ BatchRow batch_row(const io::MechanismFile& mech) {
   row.area_units = area_unit(mech);
   AreaReport result;
   try {
-    result = area(mech);
+    AreaOptions options;
+    options.figure_pieces = true;  // the row's figure draws the limited workspace's pieces
+    result = area(mech, options);
   } catch (const std::exception& e) {
     row.note = e.what();
     if (mech.model->dof() == 1) {  // its curves instead of a region

@@ -74,6 +74,7 @@ ExportReport export_file(const io::MechanismFile& mech, const ExportOptions& o) 
     // (criteria files: the certified limited region; bodies: the real workspace).
     AreaOptions options;
     options.budget = o.budget;
+    options.figure_pieces = true;
     const AreaReport result = area(mech, options);
     out.content = "figure";
     if (!result.stopped.empty()) {

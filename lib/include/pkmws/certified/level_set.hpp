@@ -86,6 +86,11 @@ struct LevelSetOptions {
   /// traced cell gives the box below/around its envelopes, so area(inner) <=
   /// area_lower and area(outer) >= area_upper). Costly; the bounds do not need it.
   bool build_regions = false;
+  /// Whether a caller that knows charts of the fields (criteria::limited_workspace)
+  /// may trace parts of W in them: the bounds are then narrower and faster, but
+  /// the pieces for figures (inside_boxes, inner_polygons) cover the part traced
+  /// in (x, y) only. Figures ask for false.
+  bool charts = true;
   /// The area element (a chart's); the bounds are of ∫∫_S ρ. Regions are not
   /// built for a weighted plane (they would be in the chart's coordinates).
   AreaWeight weight;

@@ -145,6 +145,9 @@ struct LimitedWorkspace {
   std::vector<certified::CurvePiece> curves;
   certified::LevelSetResult detail;      // pieces and statistics (region and curves moved out)
   double time_ms = 0.0;
+  /// Parts of W were traced in charts (docs/theory/level_sets.md, "Charts"):
+  /// detail's pieces (inside_boxes, inner_polygons) then cover the rest only.
+  bool charted = false;
   /// Why the region is empty without any refinement (a field's `nowhere`), or "".
   std::string note;
   /// With min_singularity_distance (docs/theory/level_sets.md, distance to

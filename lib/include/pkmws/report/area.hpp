@@ -30,6 +30,9 @@ struct AreaOptions {
   bool rectangle_any_angle = false;
   /// Files with criteria: the certified level sets' bound width relative to the area.
   double criteria_tolerance = 1e-6;
+  /// Files with criteria: the limited workspace's pieces cover all of it in
+  /// (x, y), as its figure needs (then no charts: docs/theory/level_sets.md).
+  bool figure_pieces = false;
   /// Files with criteria: their deadline and progress (the report then may be `stopped`).
   Budget budget;
 };
@@ -107,6 +110,7 @@ std::string to_text(const AreaReport& report);
 struct LimitedOptions {
   double tolerance = 1e-6;
   bool build_regions = false;
+  bool charts = true;  // certified::LevelSetOptions::charts
   int threads = 0;
   Budget budget;
 };
