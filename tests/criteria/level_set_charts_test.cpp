@@ -103,6 +103,24 @@ TEST(LevelSetCharts, TheRestAndTheChartsPartsAddUpToTheWorkspace) {
   }
 }
 
+TEST(LevelSetCharts, BoundsAtEveryToleranceMeet) {
+  // Different tolerances trace different pieces: every pair of enclosures of
+  // one area must meet (each chart's own bounds are checked through the total).
+  for (const auto& f : {five_bar(0.125, 0.2, 0.2, 0.2, 0.2, 1, 1, 80.0), five_bar(0.125, 0.2, 0.2, 0.2, 0.2, 1, -1, 60.0)}) {
+    std::vector<certified::CertifiedRegion> rs;
+    for (double tol : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7}) {
+      certified::LevelSetOptions o;
+      o.relative_tolerance = tol;
+      rs.push_back(criteria::limited_workspace(f, criteria::file_limits(f), o).region);
+      EXPECT_LE(rs.back().area_lower, rs.back().area_upper) << tol;
+      EXPECT_LE(rs.back().width(), tol * rs.back().area_upper) << tol;
+    }
+    for (const auto& a : rs) {
+      for (const auto& b : rs) EXPECT_LE(a.area_lower, b.area_upper);
+    }
+  }
+}
+
 TEST(LevelSetCharts, ChartedBoundsMeetThePlanesAndHoldADenseGrid) {
   std::vector<io::MechanismFile> files;
   files.push_back(five_bar(0.125, 0.2, 0.2, 0.2, 0.2, 1, 1, 20.0));  // DexTAR

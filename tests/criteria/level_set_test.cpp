@@ -4,6 +4,7 @@
 // figure 10's splitting, PAMINSA reaction-limited regions.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -199,6 +200,66 @@ TEST(LevelSets, WeightedChartAreasAgainstClosedForms) {
       EXPECT_LE(plain.region.area_lower, flat + 1e-13);
       EXPECT_GE(plain.region.area_upper, flat - 1e-13);
     }
+  }
+}
+
+// Random polar curves r = f(θ) that dip below r = 0 (the chart's edge, where
+// its weight ρ = r changes sign beyond the window): the weighted bounds must
+// hold ½ ∫ max(f, 0)² dθ; pieces next to that edge have envelopes reaching
+// below it, where the clamped part's monotonicity fails.
+struct PolarWave {
+  std::array<double, 6> a{}, phase{};
+  double a0 = 0.0;
+  template <class T> T f(const T& t) const {
+    using certified::cos;
+    using std::cos;
+    T v = T(a0);
+    for (std::size_t k = 0; k < a.size(); ++k) v = v + a[k] * cos(static_cast<double>(2 * k + 3) * t + phase[k]);
+    return v;
+  }
+  // y - f(x), plus a term that is 0 but which interval arithmetic cannot
+  // cancel: the derivatives' enclosures are wide, so the envelopes reach far
+  // beyond the cell (the case where they cross the window's edge).
+  double blur = 0.0;
+  template <class T> T eval(const T& x, const T& y) const {
+    using certified::cos;
+    using certified::sin;
+    using certified::sqr;
+    using std::cos;
+    using std::sin;
+    return y - f(x) + blur * (sqr(cos(3.0 * x)) + sqr(sin(3.0 * x)) - 1.0);
+  }
+  CellState domain(const Box&) const { return CellState::inside; }
+};
+
+TEST(LevelSets, WeightedChartAreasNextToTheWindowsEdge) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> amp(0.05, 0.3), ph(0.0, 2.0 * pi), base(-0.05, 0.1);
+  for (int k = 0; k < 8; ++k) {
+    PolarWave w;
+    w.blur = k % 2 == 0 ? 0.0 : 0.05;
+    w.a0 = base(rng);
+    for (std::size_t j = 0; j < w.a.size(); ++j) {
+      w.a[j] = amp(rng) / static_cast<double>(j + 1);
+      w.phase[j] = ph(rng);
+    }
+    const int n = 200000;  // midpoint rule of a C¹ periodic integrand
+    double exact = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double v = w.f(-pi + 2.0 * pi * (i + 0.5) / n);
+      exact += v > 0.0 ? v * v : 0.0;
+    }
+    exact *= 0.5 * 2.0 * pi / n;
+    const certified::TemplateField<PolarWave> field(w);
+    const Box win = box(-pi, 0.0, pi, 0.8);
+    certified::LevelSetOptions o;
+    o.relative_tolerance = 1e-7;
+    o.threads = 1;
+    o.weight = {0.0, 0.0, 1.0};
+    const auto r = certified::sublevel_set(field, 0.0, geometry::rectangle(win), always_inside(win), o);
+    EXPECT_LE(r.region.area_lower, exact * (1.0 + 1e-9)) << k;
+    EXPECT_GE(r.region.area_upper, exact * (1.0 - 1e-9)) << k;
+    EXPECT_LE(r.region.area_lower, r.region.area_upper) << k;
   }
 }
 

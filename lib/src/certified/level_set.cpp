@@ -329,9 +329,13 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
       // where the envelopes straddle an edge (length ~ envelope gap / |g'|):
       // the curve may leave the cell within the piece at fourth order too.
       const bool in_cell = box_lo >= v0_ && box_hi <= v1_;
+      // ρ >= 0 wherever D is evaluated: between the cell and the envelopes
+      // (which reach beyond S by the chord bound).
+      const double e_lo = std::max(0.0, g2.hi) * q * (1.0 + 1e-12), e_hi = std::max(0.0, -g2.lo) * q * (1.0 + 1e-12);
       bool rho_positive = unit_;
       if (!unit_) {
-        const double vlo = std::min(box_lo, v0_), vhi = std::max(box_hi, v1_);
+        const double vlo = std::min({box_lo, v0_, sa.lo - e_lo, sb.lo - e_lo});
+        const double vhi = std::max({box_hi, v1_, sa.hi + e_hi, sb.hi + e_hi});
         rho_positive = std::min({c0_ + cu_ * a + cv_ * vlo, c0_ + cu_ * a + cv_ * vhi, c0_ + cu_ * b + cv_ * vlo,
                                  c0_ + cu_ * b + cv_ * vhi}) >= 0.0;
       }
@@ -345,7 +349,6 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
         double q_lo = delta * 0.5 * (qw(a, sa.lo) + qw(b, sb.lo)) - q2.hi * c;
         double q_hi = delta * 0.5 * (qw(a, sa.hi) + qw(b, sb.hi)) - q2.lo * c;
         if (!in_cell) {
-          const double e_lo = std::max(0.0, g2.hi) * q * (1.0 + 1e-12), e_hi = std::max(0.0, -g2.lo) * q * (1.0 + 1e-12);
           // ∫ D over a linear envelope from (a, wa) to (b, wb): unclamped minus clamped.
           std::vector<PLPoint> tmp;
           const auto d_integral = [&](double wa, double wb, double& size) {
@@ -365,7 +368,9 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
           q_lo -= d_hi + round;
           q_hi -= d_lo - round;
         }
-        if (q_hi - q_lo <= tau_ * delta || (in_cell && depth >= max_depth)) {
+        // (q_lo <= q_hi always holds where the bounds' assumptions do; an
+        // inverted pair would only say they do not.)
+        if ((q_lo <= q_hi && q_hi - q_lo <= tau_ * delta) || (in_cell && depth >= max_depth)) {
           const std::size_t nlo = env_lo_.size(), nhi = env_hi_.size();
           accept(g2, true);
           gain_lo_ += std::max(0.0, q_lo - integral(env_lo_, nlo));
