@@ -91,11 +91,21 @@ struct CellTrace {
   std::uint64_t points = 0;
 };
 
+// g' and g'' enclosed over a box [a, b] x [lo, hi] of the graph (a parent
+// piece's: valid for a child whose own box lies inside it).
+struct Curvature {
+  Interval g1 = Interval::whole(), g2 = Interval::whole();
+  double a = 0.0, b = 0.0, lo = 0.0, hi = -1.0;
+  bool covers(double ca, double cb, double clo, double chi) const {
+    return g2.finite() && g1.finite() && ca >= a && cb <= b && clo >= lo && chi <= hi;
+  }
+};
+
 class Tracer {
  public:
   Tracer(const ScalarField& f, double level, const Box& cell, bool swapped, int sgn, double lipschitz, double extent,
-         double tau, Interval curvature, const AreaWeight& weight)
-      : f_(f), level_(level), swapped_(swapped), sgn_(sgn), L_(lipschitz), tau_(tau), g2_cell_(curvature) {
+         double tau, const AreaWeight& weight)
+      : f_(f), level_(level), swapped_(swapped), sgn_(sgn), L_(lipschitz), tau_(tau) {
     unit_ = weight.unit();
     c0_ = weight.c0;
     cu_ = swapped ? weight.cy : weight.cx;
@@ -154,7 +164,7 @@ class Tracer {
     }
     return sum;
   }
-  void integrate(double a, double b, const Sample& sa, const Sample& sb, int depth);
+  void integrate(double a, double b, const Sample& sa, const Sample& sb, int depth, const Curvature& parent = {});
   // Adds clamp(w(u), v0, v1) for the linear w from (a, wa) to (b, wb).
   void add_clamped(std::vector<PLPoint>& env, double a, double wa, double b, double wb) const;
   void add_constant(double a, double b, double w) {
@@ -174,7 +184,6 @@ class Tracer {
   int sgn_;
   double L_;
   double tau_;
-  Interval g2_cell_;  // g'' over B' (may be infinite)
   double u0_ = 0, u1_ = 0, v0_ = 0, v1_ = 0, w0_ = 0, w1_ = 0, scale_ = 1;
   bool unit_ = true;                 // ρ = 1
   double c0_ = 1, cu_ = 0, cv_ = 0;  // ρ(u, v) = c0 + cu u + cv v
@@ -271,7 +280,7 @@ void Tracer::add_clamped(std::vector<PLPoint>& env, double a, double wa, double 
   env.push_back({b, std::clamp(wb, v0_, v1_)});
 }
 
-void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, int depth) {
+void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, int depth, const Curvature& parent) {
   if (failed_) return;
   if (points_ > max_points) { failed_ = true; return; }
   const double delta = b - a;
@@ -287,12 +296,12 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
   const double tent_hi = 0.5 * (sa.hi + sb.hi) + 0.5 * L_ * delta;
   if (tent_lo > v1_) { add_constant(a, b, v1_); return; }  // never reaches B: h = v1
   if (tent_hi < v0_) { add_constant(a, b, v0_); return; }  // h = v0
-  auto split = [&]() {
+  auto split = [&](const Curvature& here) {
     const double m = 0.5 * (a + b);
     const Sample sm = solve(m, 0.25 * (sa.lo + sa.hi + sb.lo + sb.hi));
     record(m, sm);
-    integrate(a, m, sa, sm, depth + 1);
-    integrate(m, b, sm, sb, depth + 1);
+    integrate(a, m, sa, sm, depth + 1, here);
+    integrate(m, b, sm, sb, depth + 1, here);
   };
   const double box_lo = std::min(sa.lo, sb.lo) - 0.5 * L_ * delta;
   const double box_hi = std::max(sa.hi, sb.hi) + 0.5 * L_ * delta;
@@ -310,25 +319,18 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
       add_clamped(env_hi_, a, sa.hi + e_hi, b, sb.hi + e_hi);
       return true;
     };
-    // g'' over B' (once per cell), then over S (tighter, one jet).
-    if (g2_cell_.finite() && accept(g2_cell_, false)) return;
-    const Jet<Interval> j = f_.jet(box_uv(a, b, box_lo, box_hi));
-    const Interval fu = swapped_ ? j.dy : j.dx, fv = swapped_ ? j.dx : j.dy;
-    const Interval fuu = swapped_ ? j.dyy : j.dxx, fvv = swapped_ ? j.dxx : j.dyy, fuv = j.dxy;
-    if (!fv.contains_zero()) {
-      // g' = -F_u / F_v, g'' = -(F_uu + 2 F_uv g' + F_vv g'²) / F_v.
-      const Interval g1 = -(fu / fv);
-      const Interval g2 = -((fuu + Interval(2.0) * fuv * g1 + fvv * sqr(g1)) / fv);
-      // The trapezoid rule's remainder, ∫q = Δ (q(a) + q(b)) / 2 - q''(ξ) Δ³ / 12
-      // for q(u) = ∫_{v0}^{g(u)} ρ dv (g - v0 for the plane), with the signed
-      // enclosure of q'' over S: a width O(Δ⁴) per piece (the envelopes' is
-      // O(Δ³)). Weighted (ρ affine): q'' = g'' (c0 + cu u) + 2 cu g' + cv (g'² + g g'').
-      // The cell's part is ∫q(clamp(g, v0, v1)) = ∫q(g) - ∫D(g) with
-      // D(w) = q(w) - q(clamp(w)), non-decreasing where ρ >= 0 beyond the cell's
-      // edges; so ∫D(env_lo) <= ∫D(g) <= ∫D(env_hi), and those differ only
-      // where the envelopes straddle an edge (length ~ envelope gap / |g'|):
-      // the curve may leave the cell within the piece at fourth order too.
-      const bool in_cell = box_lo >= v0_ && box_hi <= v1_;
+    // The trapezoid rule's remainder, ∫q = Δ (q(a) + q(b)) / 2 - q''(ξ) Δ³ / 12
+    // for q(u) = ∫_{v0}^{g(u)} ρ dv (g - v0 for the plane), with the signed
+    // enclosure of q'' over S: a width O(Δ⁴) per piece (the envelopes' is
+    // O(Δ³)). Weighted (ρ affine): q'' = g'' (c0 + cu u) + 2 cu g' + cv (g'² + g g'').
+    // The cell's part is ∫q(clamp(g, v0, v1)) = ∫q(g) - ∫D(g) with
+    // D(w) = q(w) - q(clamp(w)), non-decreasing where ρ >= 0 beyond the cell's
+    // edges; so ∫D(env_lo) <= ∫D(g) <= ∫D(env_hi), and those differ only
+    // where the envelopes straddle an edge (length ~ envelope gap / |g'|):
+    // the curve may leave the cell within the piece at fourth order too.
+    const bool in_cell = box_lo >= v0_ && box_hi <= v1_;
+    const auto quadrature = [&](const Interval& g1, const Interval& g2, bool force) {
+      if (!g2.finite() || !g1.finite()) return false;
       // ρ >= 0 wherever D is evaluated: between the cell and the envelopes
       // (which reach beyond S by the chord bound).
       const double e_lo = std::max(0.0, g2.hi) * q * (1.0 + 1e-12), e_hi = std::max(0.0, -g2.lo) * q * (1.0 + 1e-12);
@@ -339,51 +341,68 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
         rho_positive = std::min({c0_ + cu_ * a + cv_ * vlo, c0_ + cu_ * a + cv_ * vhi, c0_ + cu_ * b + cv_ * vlo,
                                  c0_ + cu_ * b + cv_ * vhi}) >= 0.0;
       }
-      if (g2.finite() && g1.finite() && (in_cell || rho_positive)) {
-        const double c = delta * delta * delta / 12.0;
-        Interval q2 = g2;
-        if (!unit_) {
-          q2 = g2 * (Interval(c0_) + Interval(cu_) * Interval(a, b)) + Interval(2.0 * cu_) * g1 +
-               Interval(cv_) * (sqr(g1) + Interval(box_lo, box_hi) * g2);
-        }
-        double q_lo = delta * 0.5 * (qw(a, sa.lo) + qw(b, sb.lo)) - q2.hi * c;
-        double q_hi = delta * 0.5 * (qw(a, sa.hi) + qw(b, sb.hi)) - q2.lo * c;
-        if (!in_cell) {
-          // ∫ D over a linear envelope from (a, wa) to (b, wb): unclamped minus clamped.
-          std::vector<PLPoint> tmp;
-          const auto d_integral = [&](double wa, double wb, double& size) {
-            const double whole = unit_ ? delta * (0.5 * (wa + wb) - v0_)
-                                       : delta / 6.0 * (qw(a, wa) + 4.0 * qw(0.5 * (a + b), 0.5 * (wa + wb)) + qw(b, wb));
-            tmp.clear();
-            add_clamped(tmp, a, wa, b, wb);
-            const double clamped = integral(tmp, 0);
-            size = std::abs(whole) + std::abs(clamped);
-            return whole - clamped;
-          };
-          double s_lo = 0.0, s_hi = 0.0;
-          const double d_lo = d_integral(sa.lo - e_lo, sb.lo - e_lo, s_lo);
-          const double d_hi = d_integral(sa.hi + e_hi, sb.hi + e_hi, s_hi);
-          // Rounding of the differences (a few ulps of the integrals).
-          const double round = 8.0 * std::numeric_limits<double>::epsilon() * (s_lo + s_hi + std::abs(q_lo) + std::abs(q_hi));
-          q_lo -= d_hi + round;
-          q_hi -= d_lo - round;
-        }
-        // (q_lo <= q_hi always holds where the bounds' assumptions do; an
-        // inverted pair would only say they do not.)
-        if ((q_lo <= q_hi && q_hi - q_lo <= tau_ * delta) || (in_cell && depth >= max_depth)) {
-          const std::size_t nlo = env_lo_.size(), nhi = env_hi_.size();
-          accept(g2, true);
-          gain_lo_ += std::max(0.0, q_lo - integral(env_lo_, nlo));
-          gain_hi_ += std::max(0.0, integral(env_hi_, nhi) - q_hi);
-          return;
-        }
+      if (!(in_cell || rho_positive)) return false;
+      const double c = delta * delta * delta / 12.0;
+      Interval q2 = g2;
+      if (!unit_) {
+        q2 = g2 * (Interval(c0_) + Interval(cu_) * Interval(a, b)) + Interval(2.0 * cu_) * g1 +
+             Interval(cv_) * (sqr(g1) + Interval(box_lo, box_hi) * g2);
       }
-      if (accept(g2, depth >= max_depth)) return;
-      if (g2.finite()) { split(); return; }
+      double q_lo = delta * 0.5 * (qw(a, sa.lo) + qw(b, sb.lo)) - q2.hi * c;
+      double q_hi = delta * 0.5 * (qw(a, sa.hi) + qw(b, sb.hi)) - q2.lo * c;
+      if (!in_cell) {
+        // ∫ D over a linear envelope from (a, wa) to (b, wb): unclamped minus clamped.
+        std::vector<PLPoint> tmp;
+        const auto d_integral = [&](double wa, double wb, double& size) {
+          const double whole = unit_ ? delta * (0.5 * (wa + wb) - v0_)
+                                     : delta / 6.0 * (qw(a, wa) + 4.0 * qw(0.5 * (a + b), 0.5 * (wa + wb)) + qw(b, wb));
+          tmp.clear();
+          add_clamped(tmp, a, wa, b, wb);
+          const double clamped = integral(tmp, 0);
+          size = std::abs(whole) + std::abs(clamped);
+          return whole - clamped;
+        };
+        double s_lo = 0.0, s_hi = 0.0;
+        const double d_lo = d_integral(sa.lo - e_lo, sb.lo - e_lo, s_lo);
+        const double d_hi = d_integral(sa.hi + e_hi, sb.hi + e_hi, s_hi);
+        // Rounding of the differences (a few ulps of the integrals).
+        const double round = 8.0 * std::numeric_limits<double>::epsilon() * (s_lo + s_hi + std::abs(q_lo) + std::abs(q_hi));
+        q_lo -= d_hi + round;
+        q_hi -= d_lo - round;
+      }
+      // (q_lo <= q_hi always holds where the bounds' assumptions do; an
+      // inverted pair would only say they do not.)
+      if (!((q_lo <= q_hi && q_hi - q_lo <= tau_ * delta) || (force && in_cell))) return false;
+      const std::size_t nlo = env_lo_.size(), nhi = env_hi_.size();
+      accept(g2, true);
+      gain_lo_ += std::max(0.0, q_lo - integral(env_lo_, nlo));
+      gain_hi_ += std::max(0.0, integral(env_hi_, nhi) - q_hi);
+      return true;
+    };
+    // The parent piece's enclosures first (no jet), when its box holds this one.
+    if (parent.covers(a, b, box_lo, box_hi)) {
+      if (quadrature(parent.g1, parent.g2, false) || accept(parent.g2, false)) return;
+    }
+    // g'' over S (one jet).
+    const Jet<Interval> j = f_.jet(box_uv(a, b, box_lo, box_hi));
+    const Interval fu = swapped_ ? j.dy : j.dx, fv = swapped_ ? j.dx : j.dy;
+    const Interval fuu = swapped_ ? j.dyy : j.dxx, fvv = swapped_ ? j.dxx : j.dyy, fuv = j.dxy;
+    if (!fv.contains_zero()) {
+      // g' = -F_u / F_v, g'' = -(F_uu + 2 F_uv g' + F_vv g'²) / F_v.
+      Curvature here;
+      here.g1 = -(fu / fv);
+      here.g2 = -((fuu + Interval(2.0) * fuv * here.g1 + fvv * sqr(here.g1)) / fv);
+      here.a = a;
+      here.b = b;
+      here.lo = box_lo;
+      here.hi = box_hi;
+      if (quadrature(here.g1, here.g2, depth >= max_depth)) return;
+      if (accept(here.g2, depth >= max_depth)) return;
+      if (here.g2.finite()) { split(here); return; }
     }
   }
   if (depth < max_depth && delta > 1e-14 * scale_) {
-    split();
+    split(Curvature{});
     return;
   }
   // Last resort: h is L-Lipschitz; tents from the clamped samples.
@@ -518,8 +537,7 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
     extent = 1.5 * le * du + 1e-12 * du;
   }
   if (!ok) return t;
-  const Interval g2 = Interval::whole();  // no cell-wide curvature bound: per sub-interval jets are tighter
-  Tracer tracer(f, level, cell, swapped, sgn, lipschitz, extent, tau, g2, weight);
+  Tracer tracer(f, level, cell, swapped, sgn, lipschitz, extent, tau, weight);
   tracer.run(t);
   return t;
 }
