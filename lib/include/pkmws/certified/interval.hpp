@@ -113,32 +113,30 @@ inline Interval clamp(const Interval& a, double l, double h) {
   return {std::clamp(a.lo, l, h), std::clamp(a.hi, l, h)};
 }
 
-/// cos and sin over an interval: the end values (glibc's cos and sin are within
-/// 1 ulp; widened by 2 ulps) and every extremum inside (tested with a margin, so
-/// that an extremum next to an end is taken: that only widens). For the charts
-/// of the level sets (angles about a base joint).
-inline Interval cos(const Interval& a) {
+namespace interval_detail {
+// cos or sin (f) over an interval: the end values (glibc's cos and sin are
+// within 1 ulp; widened by 2 ulps), and 1 / -1 where a maximum (θ = 2π(k + m))
+// / minimum (θ = 2π(k + m + 1/2)) lies inside, tested with a margin (an
+// extremum next to an end is then taken: that only widens).
+inline Interval periodic(const Interval& a, double (*f)(double), double m) {
   constexpr double two_pi = 6.283185307179586, slack = 1e-12;
   if (!(a.width() < 6.0)) return {-1.0, 1.0};
   auto widen = [](double v, int dir) { return v + dir * (std::abs(v) * 0x1p-51 + 0x1p-1000); };
-  const double c0 = std::cos(a.lo), c1 = std::cos(a.hi);
-  double lo = widen(std::min(c0, c1), -1), hi = widen(std::max(c0, c1), 1);
-  // cos is 1 at 2πk and -1 at π + 2πk.
-  if (std::ceil((a.lo - slack) / two_pi) <= std::floor((a.hi + slack) / two_pi)) hi = 1.0;
-  if (std::ceil((a.lo - slack) / two_pi - 0.5) <= std::floor((a.hi + slack) / two_pi - 0.5)) lo = -1.0;
+  const double f0 = f(a.lo), f1 = f(a.hi);
+  double lo = widen(std::min(f0, f1), -1), hi = widen(std::max(f0, f1), 1);
+  const auto reached = [&](double phase) {
+    return std::ceil((a.lo - slack) / two_pi - phase) <= std::floor((a.hi + slack) / two_pi - phase);
+  };
+  if (reached(m)) hi = 1.0;
+  if (reached(m + 0.5)) lo = -1.0;
   return {std::max(lo, -1.0), std::min(hi, 1.0)};
 }
-inline Interval sin(const Interval& a) {
-  constexpr double two_pi = 6.283185307179586, slack = 1e-12;
-  if (!(a.width() < 6.0)) return {-1.0, 1.0};
-  auto widen = [](double v, int dir) { return v + dir * (std::abs(v) * 0x1p-51 + 0x1p-1000); };
-  const double s0 = std::sin(a.lo), s1 = std::sin(a.hi);
-  double lo = widen(std::min(s0, s1), -1), hi = widen(std::max(s0, s1), 1);
-  // sin is 1 at π/2 + 2πk and -1 at -π/2 + 2πk.
-  if (std::ceil((a.lo - slack) / two_pi - 0.25) <= std::floor((a.hi + slack) / two_pi - 0.25)) hi = 1.0;
-  if (std::ceil((a.lo - slack) / two_pi + 0.25) <= std::floor((a.hi + slack) / two_pi + 0.25)) lo = -1.0;
-  return {std::max(lo, -1.0), std::min(hi, 1.0)};
-}
+}  // namespace interval_detail
+
+/// cos and sin over an interval, for the charts of the level sets (angles
+/// about a base joint).
+inline Interval cos(const Interval& a) { return interval_detail::periodic(a, [](double x) { return std::cos(x); }, 0.0); }
+inline Interval sin(const Interval& a) { return interval_detail::periodic(a, [](double x) { return std::sin(x); }, 0.25); }
 
 // Point counterparts, so that fields are written once for both scalar types.
 inline double sqr(double a) { return a * a; }
