@@ -79,7 +79,9 @@ TEST(LevelSetCharts, TheRestAndTheChartsPartsAddUpToTheWorkspace) {
   // with their area elements) and the exact rest partition W: their areas
   // add up to W's exact area.
   for (const auto& f : {five_bar(0.125, 0.2, 0.2, 0.2, 0.2, 1, -1, 40.0), five_bar(0.1, 0.25, 0.2, 0.22, 0.27, -1, 1, 40.0),
-                        five_bar(0.08, 0.21, 0.21, 0.26, 0.26, 1, 1, 40.0)}) {
+                        five_bar(0.08, 0.21, 0.21, 0.26, 0.26, 1, 1, 40.0),
+                        // bases closer than two base disks: the bands only
+                        five_bar(0.009, 0.2, 0.2, 0.2, 0.2, 1, -1, 40.0)}) {
     const geometry::Region w = f.model->workspace();
     const auto charts = f.model->capability<criteria::CriterionFields>()->charts(w);
     ASSERT_TRUE(charts);

@@ -274,8 +274,10 @@ std::optional<CriterionFields::Charts> FiveBarCosEps::charts(const geometry::Reg
   for (std::size_t k = 0; k < 2; ++k) {
     const std::size_t j = 1 - k;
     // The base disk lies inside the rest: off the other leg's band and its inner circle.
+    // Off the other base disk too (bases closer than the two radii: no base charts).
     at_base[k] = l1[k] == l2[k] && dist + rho_base[k] < (band[j] ? rho[j] : R[j]) &&
-                 dist - rho_base[k] > std::abs(l1[j] - l2[j]) && rho_base[k] < rho[k];
+                 dist - rho_base[k] > std::abs(l1[j] - l2[j]) && rho_base[k] < rho[k] &&
+                 dist > 1.01 * (rho_base[0] + rho_base[1]);
   }
   if (!band[0] && !band[1] && !at_base[0] && !at_base[1]) return std::nullopt;
   geometry::Region rest = workspace;
