@@ -143,9 +143,8 @@ class Tracer {
   Sample solve(double u, double guess);
   // q(u) = ∫_{v0}^{w} ρ(u, v) dv: the weighted area under the envelope at u
   // (w - v0 for the plane; terms of one sign where w >= v0 and ρ >= 0).
-  double qw(double u, double w) const {
-    return unit_ ? w - v0_ : (w - v0_) * (c0_ + cu_ * u + cv_ * (0.5 * (w + v0_)));
-  }
+  double qw(double u, double w) const { return unit_ ? w - v0_ : (w - v0_) * rho(u, 0.5 * (w + v0_)); }
+  double rho(double u, double v) const { return c0_ + cu_ * u + cv_ * v; }
   // ∫ q over the envelope's vertices from `first` on (relative to v0: no
   // cancellation). Exact on each linear piece: q is then linear (the plane:
   // the trapezoid rule) or quadratic in u (affine ρ: Simpson's rule).
@@ -338,8 +337,7 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
       if (!unit_) {
         const double vlo = std::min({box_lo, v0_, sa.lo - e_lo, sb.lo - e_lo});
         const double vhi = std::max({box_hi, v1_, sa.hi + e_hi, sb.hi + e_hi});
-        rho_positive = std::min({c0_ + cu_ * a + cv_ * vlo, c0_ + cu_ * a + cv_ * vhi, c0_ + cu_ * b + cv_ * vlo,
-                                 c0_ + cu_ * b + cv_ * vhi}) >= 0.0;
+        rho_positive = std::min({rho(a, vlo), rho(a, vhi), rho(b, vlo), rho(b, vhi)}) >= 0.0;
       }
       if (!(in_cell || rho_positive)) return false;
       const double c = delta * delta * delta / 12.0;
@@ -354,8 +352,8 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
         // ∫ D over a linear envelope from (a, wa) to (b, wb): unclamped minus clamped.
         std::vector<PLPoint> tmp;
         const auto d_integral = [&](double wa, double wb, double& size) {
-          const double whole = unit_ ? delta * (0.5 * (wa + wb) - v0_)
-                                     : delta / 6.0 * (qw(a, wa) + 4.0 * qw(0.5 * (a + b), 0.5 * (wa + wb)) + qw(b, wb));
+          tmp = {{a, wa}, {b, wb}};
+          const double whole = integral(tmp, 0);
           tmp.clear();
           add_clamped(tmp, a, wa, b, wb);
           const double clamped = integral(tmp, 0);
@@ -443,7 +441,7 @@ bool Tracer::run(CellTrace& out) {
   // The envelopes' integrals, tightened where the quadrature bound is better
   // (both bound the same ∫(h - v0) piece by piece).
   const double ilo = integral(env_lo_, 0) + gain_lo_, ihi = integral(env_hi_, 0) - gain_hi_;
-  const double cell = span * (v1_ - v0_) * (unit_ ? 1.0 : c0_ + cu_ * 0.5 * (u0_ + u1_) + cv_ * 0.5 * (v0_ + v1_));
+  const double cell = span * (v1_ - v0_) * (unit_ ? 1.0 : rho(0.5 * (u0_ + u1_), 0.5 * (v0_ + v1_)));
   double lower, upper;
   if (sgn_ > 0) {  // S below the curve: area ∫(h - v0)
     lower = ilo;
@@ -511,8 +509,6 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
   // gradient and, where that fails, the centred one.
   double lipschitz = slope(j);
   double extent = 1.5 * lipschitz * du + 1e-12 * du;
-  const Grad<double> jc = f.grad(Point{0.5 * (cell.min.x + cell.max.x), 0.5 * (cell.min.y + cell.max.y)});
-  const double centre_slope = std::abs(swapped ? jc.dy : jc.dx) / std::max(std::abs(swapped ? jc.dx : jc.dy), 1e-300);
   bool ok = false;
   int sgn = 1;
   for (int attempt = 0; attempt < 4 && std::isfinite(extent); ++attempt) {
@@ -521,9 +517,7 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
     if (f.domain(ext) != CellState::inside) return t;
     Grad<Interval> je = f.grad(ext);
     double le = slope(je);
-    // The centred form also where the natural L is far above the slope at the
-    // centre: a tight L keeps the pieces' boxes (and their g'') small.
-    if (!(le * du <= extent) || le > 2.0 * centre_slope + 1e-3) {
+    if (!(le * du <= extent)) {
       je = centred_gradient(f, ext, je);
       le = slope(je);
     }

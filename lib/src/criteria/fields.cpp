@@ -214,8 +214,8 @@ void limit_singularity_distance(const mechanisms::Design& file, const geometry::
 // ⋂ {F_k <= level_k} over W = rest ∪ the charts' parts (disjoint): the rest
 // traced in (x, y) to 3/4 of the relative tolerance, each chart in its own
 // coordinates and area element to an equal share of the remaining quarter of
-// the rest's area (an absolute budget: a chart's part may be small). A chart
-// without one of the fields leaves W to the plane alone.
+// the rest's area (an absolute budget: a chart's part may be small). Every
+// chart of a module has every field its plane has (else a logic error).
 certified::LevelSetResult charted_sublevel_set(const std::vector<certified::Constraint>& cs,
                                                const std::vector<std::string>& keys, const CriterionFields::Charts& charts,
                                                const certified::LevelSetOptions& options) {

@@ -139,7 +139,6 @@ struct FiveBarCosEps {
   static constexpr double inf_angle = std::numeric_limits<double>::infinity();
 };
 
-
 // A chart about the base A_k of leg k (docs/theory/level_sets.md, "Charts"):
 // θ = c u is the angle of C - A_k from the unit direction d, and
 //  - at the circle where leg k is stretched (r = R = l1 + l2, W's boundary):
@@ -194,9 +193,9 @@ struct FiveBarChart {
     const FiveBarCosEps::Leg<T> gj = plane.leg(1 - k, x, y);
     return k == 0 ? std::array{gk, gj} : std::array{gj, gk};
   }
-  template <class T> Point to_plane(double u, double v) const {
-    T x, y;
-    chart_leg(T(u), T(v), x, y);
+  Point to_plane(double u, double v) const {
+    double x = 0.0, y = 0.0;
+    chart_leg(u, v, x, y);
     return {x, y};
   }
   template <class T> T cos_eps(const T& u, const T& v) const {
@@ -320,7 +319,7 @@ std::optional<CriterionFields::Charts> FiveBarCosEps::charts(const geometry::Reg
     ch.window = Box{{-umax, 0.0}, {umax, vmax * (1.0 + 1e-6)}};
     ch.weight = certified::AreaWeight{0.0, 0.0, m.c};
     ch.overlap = full ? 1e-14 * band_area_per_rad : 0.0;
-    ch.to_plane = [m](Point p) { return m.template to_plane<double>(p.x, p.y); };
+    ch.to_plane = [m](Point p) { return m.to_plane(p.x, p.y); };
     ch.field = point_platform_chart_fields(m, "five_bar");
     const auto cut = [&](FiveBarChartCut::Kind kind, Point centre, double ra, double rb, double sign) {
       FiveBarChartCut f{m, kind, centre, ra, rb, sign};
