@@ -120,6 +120,21 @@ TEST(LevelSetsSingular, PaminsaReactionAcrossTheSingularCircleAgainstAGrid) {
   EXPECT_GE(r.region.area_upper, grid - slack);
 }
 
+// φ = 25°: the reaction's 0/0 points (where every level curve ends) leave a
+// few hundred undecided cells at any depth, whose area shrinks 4 times per
+// level. The retries measure that and go as deep as the target needs (they
+// stopped at 9.5e-8 before, taking the cells for a band along a curve that
+// no depth decides); the bounds meet the coarser runs'.
+TEST(LevelSetsSingular, UndecidedCellsAroundPointsAreRefinedToTheTarget) {
+  const io::MechanismFile f = io::load_mechanism(test::dataset("three_rpr_paminsa_phi25_r110"));
+  const auto fine = test::limited(f, 1e-9, true);
+  EXPECT_LE(fine.region.width(), 1e-9 * fine.region.area_upper);
+  EXPECT_FALSE(fine.detail.stopped);
+  EXPECT_GT(fine.detail.undecided_cells, 100u);  // the points' cells remain
+  expect_meet(fine.region, test::limited(f, 1e-6, true).region);
+  expect_meet(fine.region, test::limited(f, 1e-3, false).region);  // the cells alone
+}
+
 // κ = σ_1/σ_2 of dq/dP: a row of dq/dP grows without bound at W's boundary (a
 // rod's type-1 singularity), det/F stays bounded when written with the rows'
 // denominators, so the boundary's cells are decided (they held 491 045

@@ -1000,30 +1000,56 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
   // Retries (not when the deadline stopped the first run: a retry would stop
   // too). When the traced cells dominate the width (the estimate of area or
   // curve length was off), one rerun with a tighter τ. When the undecided
-  // cells do, they alone are refined further: as many levels as the shortfall
-  // needs if each level at least halves their area (a band along a curve
-  // halves, next to a tangency with W's boundary it shrinks ~2.8 times, around
-  // a point 4 times), at most 4 in all (~16 times narrower), again while the
-  // target is missed. When the width is far beyond that reach (a level at the
-  // field's extreme, where the set degenerates to a curve and the interval
-  // tests cannot decide its cells at any depth), the first run's bounds are
-  // the answer.
+  // cells do, they alone are refined further, as many levels as the shortfall
+  // needs, again while the target is missed. How far depends on how their
+  // area shrinks per level, measured on the way: by about 2 where they form a
+  // band along a curve (their number doubles per level), ~2.8 next to a
+  // tangency with W's boundary, 4 around isolated points (the 0/0 points of a
+  // criterion, where every level curve ends: their number stays). Bands and
+  // tangencies go at most 4 levels deeper (~16 times narrower, at 16 times
+  // the cells), and only when the first pass's width is within that reach
+  // (64 times the target): far beyond it
+  // (a level at the field's extreme, where the set degenerates to a curve and
+  // no depth decides its cells) the bounds reached are the answer. Points go
+  // up to 16 levels deeper (each level costs the same few cells). Where the
+  // kind is not known yet, a one-level step measures it.
   const auto target = [&] { return options.relative_tolerance * r.region.area_upper; };
-  const double width = r.region.area_upper - r.region.area_lower;
-  const bool within_reach = r.traced_width > 0.5 * width || width <= max_retry_gain * target();
-  if (!options.trace || r.stopped || !within_reach || width <= target()) return final_result(pass, std::move(r));
-  if (r.traced_width > 0.5 * width) {
-    const double tau = r.tolerance_per_length * 0.5 * target() / width;
+  const auto width = [&] { return r.region.area_upper - r.region.area_lower; };
+  if (!options.trace || r.stopped || width() <= target()) return final_result(pass, std::move(r));
+  if (r.traced_width > 0.5 * width()) {
+    const double tau = r.tolerance_per_length * 0.5 * target() / width();
     const Pass again = first_pass(constraints, within, within_test, options, tau);
     return final_result(again, summarize(again, within, within_test, options.weight));
   }
-  const int max_depth = std::min(40, options.refine_depth + 4);
-  while (!r.stopped && pass.depth < max_depth && r.region.area_upper - r.region.area_lower > target()) {
+  const int band_depth = std::min(40, options.refine_depth + 4), point_depth = std::min(40, options.refine_depth + 16);
+  // Beyond the bands' reach, the probe costs at most a quarter of the first
+  // pass and the retries together at most the first pass (each level tests
+  // about 4 cells per undecided cell).
+  const bool reach = width() <= max_retry_gain * target();
+  const std::uint64_t first_tests = r.cell_tests;
+  const auto affordable = [&](int levels, std::uint64_t share) {
+    return share * (r.cell_tests - first_tests + 4 * static_cast<std::uint64_t>(levels) * r.undecided_cells) <= first_tests;
+  };
+  double shrink = 0.0, growth = 0.0;  // per level, measured: the undecided area's shrink, their number's growth
+  while (!r.stopped && width() > target() && r.undecided_area > 0.0) {
+    const bool points = shrink >= 3.0 && growth <= 1.5;
+    const int cap = points ? point_depth : band_depth;
+    if (pass.depth >= cap || (!reach && !points && shrink > 0.0)) break;
     const double room = target() - r.traced_width;
     const double need = room > 0.0 ? 1.25 * r.undecided_area / room : 16.0;
-    const int levels = std::clamp(static_cast<int>(std::ceil(std::log2(std::max(need, 2.0)))), 1, max_depth - pass.depth);
+    int levels = std::clamp(static_cast<int>(std::ceil(std::log(std::max(need, 2.0)) / std::log(points ? 3.0 : 2.0))), 1,
+                            cap - pass.depth);
+    if (!reach) {
+      if (shrink == 0.0) levels = 1;  // the probe
+      while (levels > 0 && !affordable(levels, shrink == 0.0 ? 4 : 1)) --levels;
+      if (levels == 0) break;
+    }
+    const double before = r.undecided_area;
+    const auto count = static_cast<double>(r.undecided_cells);
     deepen(pass, constraints, within_test, options, levels);
     r = summarize(pass, within, within_test, options.weight);
+    shrink = r.undecided_area > 0.0 ? std::pow(before / r.undecided_area, 1.0 / levels) : inf;
+    growth = std::pow(static_cast<double>(r.undecided_cells) / std::max(count, 1.0), 1.0 / levels);
   }
   return final_result(pass, std::move(r));
 }

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <tuple>
@@ -260,6 +261,43 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
   return out;
 }
 
+// The parameters that fix a field's cubic (its mechanism's, filled in by the
+// field; unused entries 0): with the box, the key of a one-entry cache per
+// thread. A cell's tests ask for the same box's roots up to four times (its
+// value, its smooth domain, its gradient and its jet), each costing two jets of
+// the cubic's coefficients.
+using CubicKey = std::array<double, 32>;
+struct RootCacheEntry {
+  bool valid = false, smallest = false;
+  CubicKey key{};
+  double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
+  BoxRoot root;
+};
+// One entry per thread for every field (every lambda type of cubic_of).
+inline RootCacheEntry& root_cache() {
+  thread_local RootCacheEntry last;
+  return last;
+}
+template <class F>
+BoxRoot root_over_box_cached(const CubicKey* key, const F& cubic_of, const certified::Interval& x,
+                             const certified::Interval& y, bool smallest) {
+  if (!key) return root_over_box(cubic_of, x, y, smallest);
+  RootCacheEntry& last = root_cache();
+  if (last.valid && (last.smallest || !smallest) && last.x0 == x.lo && last.x1 == x.hi && last.y0 == y.lo &&
+      last.y1 == y.hi && last.key == *key) {
+    return last.root;
+  }
+  last.root = root_over_box(cubic_of, x, y, smallest);
+  last.valid = true;
+  last.smallest = smallest;
+  last.key = *key;
+  last.x0 = x.lo;
+  last.x1 = x.hi;
+  last.y0 = y.lo;
+  last.y1 = y.hi;
+  return last.root;
+}
+
 // Implicit differentiation (gradients), the root's value and the coefficients'
 // values given (root_over_box over a box; the point values at a point).
 template <class S>
@@ -306,11 +344,12 @@ template <class T> Cubic<decltype(value_part(std::declval<T>()))> values(const C
 // `cubic_of(x, y)` in arithmetic T (double, Interval, Grad<.>, Jet<.>): over a
 // box (interval arithmetics) by root_over_box, with derivatives by implicit
 // differentiation.
-template <class T, class F> std::pair<T, T> cubic_roots_field(const F& cubic_of, const T& x, const T& y, bool smallest) {
+template <class T, class F>
+std::pair<T, T> cubic_roots_field(const F& cubic_of, const T& x, const T& y, bool smallest, const CubicKey* key = nullptr) {
   using S = decltype(value_part(std::declval<T>()));
   std::pair<T, T> out{T(0.0), T(0.0)};
   if constexpr (std::is_same_v<S, certified::Interval>) {
-    const BoxRoot b = root_over_box(cubic_of, value_part(x), value_part(y), smallest);
+    const BoxRoot b = root_over_box_cached(key, cubic_of, value_part(x), value_part(y), smallest);
     if constexpr (std::is_same_v<T, S>) {
       out = {b.largest, b.smallest};
     } else {
@@ -342,8 +381,8 @@ template <class T, class F> std::pair<T, T> cubic_roots_field(const F& cubic_of,
 // p_μ > 0 at λ_1 (λ_1 > λ_2) and λ_1 > 0, and with `smallest` at λ_3 (λ_3 < λ_2).
 template <class F>
 bool simple_roots_over_box(const F& cubic_of, const certified::Interval& x, const certified::Interval& y,
-                           bool smallest) {
-  const BoxRoot b = root_over_box(cubic_of, x, y, smallest);
+                           bool smallest, const CubicKey* key = nullptr) {
+  const BoxRoot b = root_over_box_cached(key, cubic_of, x, y, smallest);
   return b.largest.lo > 0.0 && cubic_slope(b.coefficients, b.largest).lo > 0.0 &&
          (!smallest || cubic_slope(b.coefficients, b.smallest).lo > 0.0);
 }

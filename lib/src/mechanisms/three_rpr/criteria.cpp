@@ -47,6 +47,19 @@ struct ThreeRprTwist {
       e[j] = mech.base()[j] - c[j];
     }
   }
+  // What fixes jacobian_cubic (the roots' cache key; `length` may be set later).
+  detail::CubicKey cubic_key() const {
+    detail::CubicKey k{};
+    for (std::size_t j = 0; j < 3; ++j) {
+      k[4 * j] = c[j].x;
+      k[4 * j + 1] = c[j].y;
+      k[4 * j + 2] = e[j].x;
+      k[4 * j + 3] = e[j].y;
+    }
+    k[12] = length;
+    k[13] = revolute ? 1.0 : 0.0;
+    return k;
+  }
 
   template <class T> struct Parts {
     T det, w0, w1, w2, rho2;
@@ -98,7 +111,8 @@ struct ThreeRprTwist {
   template <class T> T eval(const T& x, const T& y) const {
     if (what >= 3) {
       const auto cubic = [this](const auto& u, const auto& v) { return jacobian_cubic(u, v); };
-      const auto [l1, l3] = detail::cubic_roots_field(cubic, x, y, what == 4);
+      const detail::CubicKey key = cubic_key();
+      const auto [l1, l3] = detail::cubic_roots_field(cubic, x, y, what == 4, &key);
       if (what == 3) return l1;
       return -(l3 / l1);
     }
@@ -140,7 +154,8 @@ struct ThreeRprTwist {
       }
       const auto cubic = [this](const auto& u, const auto& v) { return jacobian_cubic(u, v); };
       const Interval x(b.min.x, b.max.x), y(b.min.y, b.max.y);
-      const bool simple = detail::simple_roots_over_box(cubic, x, y, what == 4);
+      const detail::CubicKey key = cubic_key();
+      const bool simple = detail::simple_roots_over_box(cubic, x, y, what == 4, &key);
       return simple ? CellState::inside : CellState::undecided;
     }
     const Parts<Interval> p = parts(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y));

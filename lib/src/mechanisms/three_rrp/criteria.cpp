@@ -47,6 +47,20 @@ struct ThreeRrpChains {
       limits[i] = ch.limits;
     }
   }
+  // What fixes jacobian_cubic (the roots' cache key; `length` may be set later).
+  detail::CubicKey cubic_key() const {
+    detail::CubicKey key{};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const std::array<double, 8> v{n[i].x, n[i].y, base[i].x, base[i].y, dir[i].x, dir[i].y, k[i], r[i]};
+      std::copy(v.begin(), v.end(), key.begin() + static_cast<std::ptrdiff_t>(8 * i));
+    }
+    key[24] = nd[0];
+    key[25] = nd[1];
+    key[26] = nd[2];
+    key[27] = length;
+    key[28] = crank ? 1.0 : 0.0;
+    return key;
+  }
 
   template <class T> struct Parts {
     T a[3][3];
@@ -94,7 +108,8 @@ struct ThreeRrpChains {
     using std::sqrt;
     if (what >= 3) {
       const auto cubic = [this](const auto& u, const auto& v) { return jacobian_cubic(u, v); };
-      const auto [l1, l3] = detail::cubic_roots_field(cubic, x, y, what == 4);
+      const detail::CubicKey key = cubic_key();
+      const auto [l1, l3] = detail::cubic_roots_field(cubic, x, y, what == 4, &key);
       if (what == 3) return l1;
       return -(l3 / l1);
     }
@@ -141,7 +156,8 @@ struct ThreeRrpChains {
     if (what == 2) return CellState::inside;
     if (what >= 3) {
       const auto cubic = [this](const auto& u, const auto& v) { return jacobian_cubic(u, v); };
-      const bool simple = detail::simple_roots_over_box(cubic, x, y, what == 4);
+      const detail::CubicKey key = cubic_key();
+      const bool simple = detail::simple_roots_over_box(cubic, x, y, what == 4, &key);
       return simple ? CellState::inside : CellState::undecided;
     }
     ThreeRrpChains d = *this;
