@@ -1015,7 +1015,7 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
   // kind is not known yet, a one-level step measures it.
   const auto target = [&] { return options.relative_tolerance * r.region.area_upper; };
   const auto width = [&] { return r.region.area_upper - r.region.area_lower; };
-  if (!options.trace || r.stopped || width() <= target()) return final_result(pass, std::move(r));
+  if (!options.trace || !options.retries || r.stopped || width() <= target()) return final_result(pass, std::move(r));
   if (r.traced_width > 0.5 * width()) {
     const double tau = r.tolerance_per_length * 0.5 * target() / width();
     const Pass again = first_pass(constraints, within, within_test, options, tau);

@@ -68,11 +68,17 @@ void criteria_area_report(AreaReport& out, const io::MechanismFile& mech, const 
   criteria::LimitedWorkspace lw = limited_workspace(mech, o);
   if (options.figure_pieces && lw.charted && !lw.detail.stopped) {
     // The figure draws pieces in (x, y), which the charts' parts do not give:
-    // the same set traced in (x, y) alone, to the drawing's accuracy (1e-4 of
-    // the area: under a pixel), gives them; the numbers stay the charted ones.
+    // the same set traced in (x, y) alone, to the drawing's accuracy, gives
+    // them; the numbers stay the charted ones. One pass, cells refined 3
+    // levels below the cover's (1/8 of a leaf, 0.2 mm for the DexTAR: under
+    // a pixel), curves traced to 1e-4 of the area: the cells a figure does
+    // not resolve are not refined (DexTAR α ≤ 80°: 0.60 s instead of 1.64 s;
+    // the inner bound drawn within 6.5e-4 of the area).
     LimitedOptions p = o;
     p.charts = false;
     p.tolerance = std::max(o.tolerance, 1e-4);
+    p.refine_depth = 3;
+    p.retries = false;
     criteria::LimitedWorkspace plane = limited_workspace(mech, p);
     lw.detail.inside_boxes = std::move(plane.detail.inside_boxes);
     lw.detail.inner_polygons = std::move(plane.detail.inner_polygons);
@@ -192,6 +198,8 @@ criteria::LimitedWorkspace limited_workspace(const io::MechanismFile& file, cons
   o.build_regions = options.build_regions;
   o.charts = options.charts;
   o.threads = options.threads;
+  if (options.refine_depth) o.refine_depth = *options.refine_depth;
+  o.retries = options.retries;
   return criteria::limited_workspace(file, criteria::file_limits(file), options.budget.apply(o));
 }
 

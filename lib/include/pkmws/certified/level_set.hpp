@@ -96,6 +96,10 @@ struct LevelSetOptions {
   AreaWeight weight;
   /// Trace curves (layer b); false gives the pure cell baseline (layer a).
   bool trace = true;
+  /// Refine again where the first pass misses the tolerance (the retries of
+  /// docs/theory/level_sets.md). A figure's pieces ask for one pass: its
+  /// refine_depth is what the drawing resolves.
+  bool retries = true;
   /// A bound on the work: past this instant no cell is split or traced any
   /// more; the cells not yet decided stay undecided, so the bounds remain
   /// valid, only wider (LevelSetResult::stopped says so). Default: no bound.

@@ -112,6 +112,9 @@ struct LimitedOptions {
   bool build_regions = false;
   bool charts = true;  // certified::LevelSetOptions::charts
   int threads = 0;
+  /// certified::LevelSetOptions::refine_depth (its default when not given) and retries.
+  std::optional<int> refine_depth;
+  bool retries = true;
   Budget budget;
 };
 /// The workspace of a file with `criteria`, limited by them (docs/theory/level_sets.md):
