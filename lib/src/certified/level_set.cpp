@@ -210,6 +210,13 @@ Tracer::Sample Tracer::solve(double u, double guess) {
     if (!std::isfinite(g)) break;
     gv_root = gv;
     if (g < 0.0) lo = std::max(lo, v); else hi = std::min(hi, v);
+    // A Newton step below a few ulps: v is the root to G's rounding. (Taken
+    // as a step, it rounds to v itself, which the bracket below would refuse
+    // and bisect from: 30-40 iterations for nothing, on half the samples.)
+    if (gv > 0.0 && std::isfinite(gv) && std::abs(g) <= 1e-15 * scale_ * gv) {
+      converged = true;
+      break;
+    }
     double next = (gv > 0.0 && std::isfinite(gv)) ? v - g / gv : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) {
       next = 0.5 * (lo + hi);
@@ -488,7 +495,17 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
   Grad<Interval> j = f.grad(cell);
   // The centred form where a component's sign is unknown: it decides which
   // graph direction (the steeper one) is taken, and a poor choice costs pieces.
-  if (j.dx.contains_zero() || j.dy.contains_zero()) j = centred_gradient(f, cell, j);
+  // Where one component's sign is known and the gradient at the centre
+  // agrees that it is the larger, the natural form's choice stands (a jet
+  // saved: 40 % of the centred forms on the PAMINSA, same cells).
+  if (j.dx.contains_zero() || j.dy.contains_zero()) {
+    bool need = j.dx.contains_zero() && j.dy.contains_zero();
+    if (!need) {
+      const Grad<double> gc = f.grad(Point{0.5 * (cell.min.x + cell.max.x), 0.5 * (cell.min.y + cell.max.y)});
+      need = !(j.dx.contains_zero() ? std::abs(gc.dx) <= std::abs(gc.dy) : std::abs(gc.dy) <= std::abs(gc.dx));
+    }
+    if (need) j = centred_gradient(f, cell, j);
+  }
   if (!j.dx.finite() || !j.dy.finite()) return t;
   const bool y_ok = !j.dy.contains_zero(), x_ok = !j.dx.contains_zero();
   bool swapped;
