@@ -78,14 +78,13 @@ def main():
                      f"{int(plane['undecided_cells'])}" if plane else "–")
         ok6 = w1 <= 1e-6 and t1 <= 0.1
         met6 += ok6
-        n_grid += 1
         hit_n = int(one.get("grid_first_hit_N", 0))
         hit_s = one.get("grid_first_hit_s", 0.0)
         if one.get("grid_skipped"):
             # A distance limit: d(P) has no point formula to grid.
             grid_txt, ratio_txt = "– (no point formula for d(P))", "–"
-            n_grid -= 1
         elif hit_n:
+            n_grid += 1
             grid_txt = f"{hit_n}², {fmt_time(hit_s)}"
             ratio = hit_s / t1
             beat += ratio > 1
@@ -93,6 +92,7 @@ def main():
         else:
             # No hit: the grid was still outside the bounds at 8192², so it
             # needs more than that grid's time.
+            n_grid += 1
             grid_txt = f"none up to 8192² ({fmt_time(hit_s)})"
             beat += hit_s > t1
             ratio_txt = f"> {hit_s / t1:.2g}"

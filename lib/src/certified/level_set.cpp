@@ -213,11 +213,12 @@ Tracer::Sample Tracer::solve(double u, double guess) {
     // A Newton step below a few ulps: v is the root to G's rounding. (Taken
     // as a step, it rounds to v itself, which the bracket below would refuse
     // and bisect from: 30-40 iterations for nothing, on half the samples.)
-    if (gv > 0.0 && std::isfinite(gv) && std::abs(g) <= 1e-15 * scale_ * gv) {
+    const bool newton = gv > 0.0 && std::isfinite(gv);
+    if (newton && std::abs(g) <= 1e-15 * scale_ * gv) {
       converged = true;
       break;
     }
-    double next = (gv > 0.0 && std::isfinite(gv)) ? v - g / gv : 0.5 * (lo + hi);
+    double next = newton ? v - g / gv : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) {
       next = 0.5 * (lo + hi);
       // Bisecting towards an end of B': the curve may be beyond it (then no
@@ -1025,9 +1026,9 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
   // criterion, where every level curve ends: their number stays). Bands and
   // tangencies go at most 4 levels deeper (~16 times narrower, at 16 times
   // the cells), and only when the first pass's width is within that reach
-  // (64 times the target): far beyond it
-  // (a level at the field's extreme, where the set degenerates to a curve and
-  // no depth decides its cells) the bounds reached are the answer. Points go
+  // (64 times the target): far beyond it (a level at the field's extreme,
+  // where the set degenerates to a curve and no depth decides its cells) the
+  // bounds reached are the answer. Points go
   // up to 16 levels deeper (each level costs the same few cells). Where the
   // kind is not known yet, a one-level step measures it.
   const auto target = [&] { return options.relative_tolerance * r.region.area_upper; };
