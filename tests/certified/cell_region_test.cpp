@@ -59,6 +59,37 @@ TEST(CertifiedCover, DiskBoundsContainTheAreaAndShrinkWithDepth) {
   }
 }
 
+// A window 10 times wider than high: with rows of their own the cells are
+// square. The bounds still hold the disk's area, every cell has the height
+// the rows give, and the cover tests fewer cells than with as many rows as
+// columns (cells 10 times flatter).
+TEST(CertifiedCover, RowsOfTheirOwnGiveSquareCellsAndValidBounds) {
+  const double r = 0.4;
+  CellOptions o;
+  o.window = box(-5.0, -0.5, 5.0, 0.5);
+  o.base = 20;
+  o.max_depth = 4;
+  o.base_rows = 2;
+  const auto c = pkmws::certified::cover(disk_test({0.3, 0.05}, r), o);
+  const double exact = std::numbers::pi * r * r;  // the disk lies inside the window
+  EXPECT_LE(c.area_inside, exact);
+  EXPECT_GE(c.area_inside + c.area_undecided, exact);
+  const double h = 1.0 / (2.0 * 16.0), w = 10.0 / (20.0 * 16.0);
+  ASSERT_FALSE(c.undecided.empty());
+  for (const Box& b : c.undecided) {
+    EXPECT_NEAR(b.height(), h, 1e-12);
+    EXPECT_NEAR(std::fmod(b.width() + 0.5 * w, w), 0.5 * w, 1e-9);  // runs of whole cells
+  }
+  CellOptions flat = o;
+  flat.base_rows = 0;  // 20 rows: cells 20 times wider than high
+  const auto f = pkmws::certified::cover(disk_test({0.3, 0.05}, r), flat);
+  EXPECT_LE(f.area_inside, exact);
+  EXPECT_GE(f.area_inside + f.area_undecided, exact);
+  EXPECT_LT(c.tests, f.tests);
+  o.base_rows = -1;
+  EXPECT_THROW(pkmws::certified::cover(disk_test({0, 0}, 1), o), std::invalid_argument);
+}
+
 TEST(CertifiedCover, ThreadCountDoesNotChangeTheResult) {
   CellOptions o;
   o.window = box(-2, -2, 2, 2);

@@ -156,6 +156,36 @@ TEST(LevelSets, WidthShrinksWithTheToleranceAndBoundsNest) {
   }
 }
 
+// An absolute target (a chart's share of a whole's width): the width meets
+// it, not the far tighter relative one, and the bounds hold the closed form.
+// A relative target alone of the same size gives the same work; the
+// absolute one only ever loosens: a larger relative target wins.
+TEST(LevelSets, AnAbsoluteToleranceIsMetAndOnlyLoosens) {
+  const certified::TemplateField<Cassini> f(Cassini{1.0});
+  const Box w = box(-2.0, -1.5, 2.0, 1.5);
+  const geometry::Region window = geometry::rectangle(w);
+  const double exact = cassini_area(1.0, 1.2), level = std::pow(1.2, 4);
+  certified::LevelSetOptions o;
+  o.relative_tolerance = 1e-15;
+  o.absolute_tolerance = 1e-5 * exact;
+  const auto a = certified::sublevel_set(f, level, window, always_inside(w), o);
+  EXPECT_LE(a.region.width(), 1e-5 * exact);
+  EXPECT_GT(a.region.width(), 1e-9 * exact);  // not traced to the relative 1e-15
+  EXPECT_LE(a.region.area_lower, exact);
+  EXPECT_GE(a.region.area_upper, exact);
+  certified::LevelSetOptions rel;
+  rel.relative_tolerance = 1e-5;
+  const auto b = certified::sublevel_set(f, level, window, always_inside(w), rel);
+  EXPECT_LT(std::abs(static_cast<double>(a.curve_points) - static_cast<double>(b.curve_points)),
+            0.1 * static_cast<double>(b.curve_points));
+  rel.absolute_tolerance = 1e-9 * exact;  // below the relative one: no effect
+  const auto c = certified::sublevel_set(f, level, window, always_inside(w), rel);
+  EXPECT_EQ(c.region.area_lower, b.region.area_lower);
+  EXPECT_EQ(c.region.area_upper, b.region.area_upper);
+  rel.absolute_tolerance = -1.0;
+  EXPECT_THROW(certified::sublevel_set(f, level, window, always_inside(w), rel), std::invalid_argument);
+}
+
 // A star r = f(θ) = 1 + e cos 3θ in a polar chart: the field r - f(θ) with θ
 // on one axis and r on the other, and the area element ρ = r (the chart's
 // weight). ∫∫_{r <= f} r dr dθ = ½ ∫ f² dθ = π (1 + e²/2) in closed form.

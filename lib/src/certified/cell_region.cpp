@@ -26,15 +26,16 @@ struct Cell {
   int level = 0;
 };
 
-Box cell_box(const Box& window, int base, const Cell& c) {
+Box cell_box(const Box& window, int base, int rows, const Cell& c) {
   const double n = static_cast<double>(base) * std::ldexp(1.0, c.level);
+  const double m = static_cast<double>(rows) * std::ldexp(1.0, c.level);
   const double w = window.width(), h = window.height();
   Box b;
-  b.min = {window.min.x + w * (static_cast<double>(c.i) / n), window.min.y + h * (static_cast<double>(c.j) / n)};
-  b.max = {window.min.x + w * (static_cast<double>(c.i + 1) / n), window.min.y + h * (static_cast<double>(c.j + 1) / n)};
+  b.min = {window.min.x + w * (static_cast<double>(c.i) / n), window.min.y + h * (static_cast<double>(c.j) / m)};
+  b.max = {window.min.x + w * (static_cast<double>(c.i + 1) / n), window.min.y + h * (static_cast<double>(c.j + 1) / m)};
   // The last column/row ends exactly on the window.
   if (static_cast<double>(c.i + 1) == n) b.max.x = window.max.x;
-  if (static_cast<double>(c.j + 1) == n) b.max.y = window.max.y;
+  if (static_cast<double>(c.j + 1) == m) b.max.y = window.max.y;
   return b;
 }
 
@@ -65,6 +66,8 @@ CellCover cover(const CellTest& test, const CellOptions& options) {
   if (options.window.empty() || !(options.window.width() > 0.0) || !(options.window.height() > 0.0))
     throw std::invalid_argument("certified::cover: the window is empty");
   if (options.base < 1) throw std::invalid_argument("certified::cover: base must be >= 1");
+  if (options.base_rows < 0) throw std::invalid_argument("certified::cover: base_rows must be >= 0");
+  const int rows = options.base_rows > 0 ? options.base_rows : options.base;
   if (options.max_depth < 0 || options.max_depth > 24)
     throw std::invalid_argument("certified::cover: max_depth must be in [0, 24]");
   if (!test) throw std::invalid_argument("certified::cover: no cell test");
@@ -75,8 +78,8 @@ CellCover cover(const CellTest& test, const CellOptions& options) {
 
   CellCover result;
   std::vector<Cell> level;
-  level.reserve(static_cast<std::size_t>(options.base) * static_cast<std::size_t>(options.base));
-  for (int j = 0; j < options.base; ++j)
+  level.reserve(static_cast<std::size_t>(options.base) * static_cast<std::size_t>(rows));
+  for (int j = 0; j < rows; ++j)
     for (int i = 0; i < options.base; ++i) level.push_back({i, j, 0});
 
   std::vector<Box> inside;
@@ -87,18 +90,18 @@ CellCover cover(const CellTest& test, const CellOptions& options) {
     const std::size_t blocks = detail::block_count(level.size(), block);
     detail::for_each_block(policy, blocks, level.size(), [&](std::size_t b) {
       const std::size_t end = std::min(level.size(), (b + 1) * block);
-      for (std::size_t k = b * block; k < end; ++k) state[k] = test(cell_box(options.window, options.base, level[k]));
+      for (std::size_t k = b * block; k < end; ++k) state[k] = test(cell_box(options.window, options.base, rows, level[k]));
     });
     result.tests += level.size();
     std::vector<Cell> next;
     for (std::size_t k = 0; k < level.size(); ++k) {
       const Cell& c = level[k];
       switch (state[k]) {
-        case CellState::inside: inside.push_back(cell_box(options.window, options.base, c)); break;
+        case CellState::inside: inside.push_back(cell_box(options.window, options.base, rows, c)); break;
         case CellState::outside: break;
         case CellState::undecided:
           if (depth == options.max_depth) {
-            result.undecided.push_back(cell_box(options.window, options.base, c));
+            result.undecided.push_back(cell_box(options.window, options.base, rows, c));
           } else {
             for (int dj = 0; dj < 2; ++dj)
               for (int di = 0; di < 2; ++di) next.push_back({2 * c.i + di, 2 * c.j + dj, c.level + 1});

@@ -811,6 +811,7 @@ Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const W
   CellOptions& co = pass.co;
   co.window = within.bbox();
   co.base = options.base;
+  co.base_rows = options.base_rows;
   co.max_depth = options.cover_depth;
   co.threads = options.threads;
   // S ⊆ W: a box outside W is outside S, whatever the fields (whose domain
@@ -833,7 +834,7 @@ Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const W
       for (const Box& b : pass.cover.undecided) undecided_est += w.box(b);
     }
     const double area_est = std::max(inside_est + 0.5 * undecided_est, 1e-6 * w.box(co.window));
-    tau = options.relative_tolerance * area_est / length;
+    tau = std::max(options.relative_tolerance * area_est, options.absolute_tolerance) / length;
   }
   pass.tau = tau;
   pass.depth = options.refine_depth;
@@ -1001,6 +1002,7 @@ void add_regions(const Pass& pass, const Region& within, const LevelSetOptions& 
 LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Region& within,
                             const WithinTest& within_test, const LevelSetOptions& options) {
   if (!(options.relative_tolerance > 0.0)) throw std::invalid_argument("sublevel_set: relative_tolerance must be positive");
+  if (!(options.absolute_tolerance >= 0.0)) throw std::invalid_argument("sublevel_set: absolute_tolerance must be >= 0");
   if (options.refine_depth < 0 || options.refine_depth > 40) throw std::invalid_argument("sublevel_set: refine_depth in [0, 40]");
   if (constraints.empty()) throw std::invalid_argument("sublevel_set: no field");
   if (within.empty()) {
@@ -1031,7 +1033,7 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
   // bounds reached are the answer. Points go
   // up to 16 levels deeper (each level costs the same few cells). Where the
   // kind is not known yet, a one-level step measures it.
-  const auto target = [&] { return options.relative_tolerance * r.region.area_upper; };
+  const auto target = [&] { return std::max(options.relative_tolerance * r.region.area_upper, options.absolute_tolerance); };
   const auto width = [&] { return r.region.area_upper - r.region.area_lower; };
   if (!options.trace || !options.retries || r.stopped || width() <= target()) return final_result(pass, std::move(r));
   if (r.traced_width > 0.5 * width()) {

@@ -244,8 +244,18 @@ certified::LevelSetResult charted_sublevel_set(const std::vector<certified::Cons
     // The charts' parts are thin (a band, a small disk): a coarser cover
     // (16 × 2³ cells over the window) still leaves the curve graphs in its cells.
     co.cover_depth = std::min(co.cover_depth, 3);
-    // Relative to the window's area (>= the part's): the width stays within the budget.
-    co.relative_tolerance = std::clamp(budget / chart.weight.box(chart.window), 1e-15, 0.5);
+    // Cells closest to square in the chart's units: its window is far wider
+    // than high (a band: ~11 times, a base disk: 2π), and a level curve
+    // crossing it then crossed 128 rows of flat cells (DexTAR (+1, +1),
+    // α ≤ 80°: 1 800 traced cells per band chart with 16 rows, 500 with 1).
+    co.base_rows = std::clamp(static_cast<int>(std::lround(co.base * chart.window.height() / chart.window.width())), 1,
+                              co.base);
+    // The budget in area units: relative to the part's own area it would be
+    // far looser than the rest's (the part is small), relative to the
+    // window's far tighter (the part fills little of it: the band charts of
+    // the DexTAR were traced 55 times narrower than their budget).
+    co.relative_tolerance = 1e-15;
+    co.absolute_tolerance = budget;
     const geometry::Box w = chart.window;
     const certified::LevelSetResult r = certified::sublevel_set(
         chart_cs[k], geometry::rectangle(w), [](const geometry::Box&) { return certified::CellState::inside; }, co);

@@ -34,6 +34,9 @@ struct CellOptions {
   geometry::Box window;
   /// Cells per side of the base grid (cells are window/base, not necessarily square).
   int base = 16;
+  /// Rows of the base grid, where they differ from `base` (0: `base`): a
+  /// window much wider than high in its own units gets cells closer to square.
+  int base_rows = 0;
   /// Subdivisions of an undecided base cell (each halves the cell side).
   int max_depth = 8;
   /// 0: every hardware thread, 1: serial, K: K threads. Results do not depend on it.

@@ -75,8 +75,14 @@ struct AreaWeight {
 struct LevelSetOptions {
   /// Target bound width relative to the area: area_upper - area_lower <= tol * area (aimed at, reported).
   double relative_tolerance = 1e-6;
+  /// A target width in area units instead, where it is larger than the
+  /// relative one (0: none). A part of a larger set (a chart's) is traced to
+  /// its share of the whole's width, whatever its own area.
+  double absolute_tolerance = 0.0;
   /// Quadtree before tracing: base cells per side and levels of the cover.
   int base = 16;
+  /// Rows of the base grid where they differ from `base` (0: `base`; CellOptions::base_rows).
+  int base_rows = 0;
   int cover_depth = 5;
   /// Further splits of a cell that cannot be traced (depth below the cover's leaves).
   int refine_depth = 8;

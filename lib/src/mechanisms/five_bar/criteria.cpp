@@ -260,7 +260,7 @@ std::optional<CriterionFields::Charts> FiveBarCosEps::charts(const geometry::Reg
     if (l) return std::nullopt;  // crank limits: W is not the two annuli alone
   }
   CriterionFields::Charts out;
-  // Bands at the circles r_k = R_k (width R_k / 32), disks at the bases of equal links (radius R_k / 32).
+  // Bands at the circles r_k = R_k (width R_k / 32), disks at the bases of equal links (radius R_k / 6).
   std::array<double, 2> R{}, rho{}, rho_base{};
   std::array<bool, 2> band{}, at_base{};
   const double dist = std::hypot(base[1].x - base[0].x, base[1].y - base[0].y);
@@ -268,7 +268,7 @@ std::optional<CriterionFields::Charts> FiveBarCosEps::charts(const geometry::Reg
     R[k] = l1[k] + l2[k];
     rho[k] = R[k] * (31.0 / 32.0);
     band[k] = rho[k] > std::abs(l1[k] - l2[k]) && dist > 0.0;
-    rho_base[k] = R[k] / 32.0;
+    rho_base[k] = R[k] / 6.0;
   }
   for (std::size_t k = 0; k < 2; ++k) {
     const std::size_t j = 1 - k;
