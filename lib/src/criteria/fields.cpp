@@ -250,6 +250,11 @@ certified::LevelSetResult charted_sublevel_set(const std::vector<certified::Cons
     // α ≤ 80°: 1 800 traced cells per band chart with 16 rows, 500 with 1).
     co.base_rows = std::clamp(static_cast<int>(std::lround(co.base * chart.window.height() / chart.window.width())), 1,
                               co.base);
+    // As deep as the flat cells went: the undecided cells left where no depth
+    // traces (a tangency at the window's edge) are then no larger than with
+    // as many rows as columns (their area had kept the DexTAR's 1e-9 runs at
+    // 9e-9: α ≤ 20°, a band chart's 4 cells).
+    co.refine_depth += static_cast<int>(std::ceil(std::log2(static_cast<double>(co.base) / co.base_rows)));
     // The budget in area units: relative to the part's own area it would be
     // far looser than the rest's (the part is small), relative to the
     // window's far tighter (the part fills little of it: the band charts of
