@@ -28,9 +28,14 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
                   "Inscribed rectangles axis-aligned (axis, default) or at any orientation (any: the angle "
                   "and corners are reported; docs/design_space.md)")
       ->check(CLI::IsMember({"axis", "any"}));
+  auto tolerance = std::make_shared<double>(1e-6);
+  sub->add_option("--tolerance", *tolerance,
+                  "Files with criteria limits: target width of the certified area bounds relative to the area "
+                  "(default 1e-6; 1e-9 takes about a second for the DexTAR)");
   auto max_time = std::make_shared<double>(0.0);
   add_max_time_option(sub, *max_time);
-  commands.push_back({sub, [file, json, depth, max_time, rectangle_precision, rectangle_angle] {
+  commands.push_back({sub, [file, json, depth, max_time, rectangle_precision, rectangle_angle, tolerance] {
+    if (!(*tolerance > 0.0 && *tolerance < 1.0)) throw io::InputError("--tolerance: must be in (0, 1)");
     const io::MechanismFile mech = io::load_mechanism(*file);
     // Criteria limits are certified level sets: bounded by --max-time, with progress.
     const CertifiedWork work("area", *max_time);
@@ -38,6 +43,7 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
     options.interference_depth = *depth;
     options.rectangle_precision = *rectangle_precision;
     options.rectangle_any_angle = *rectangle_angle == "any";
+    options.criteria_tolerance = *tolerance;
     options.budget = work.budget();
     const report::AreaReport result = report::area(mech, options);
     if (*json) {

@@ -124,6 +124,24 @@ TEST_F(Cli, ExportHonoursCriteriaLimits) {
   EXPECT_LT(j["area_upper"].get<double>(), 0.2);  // α <= 40° keeps 0.18125 m² of 0.41558
 }
 
+TEST_F(Cli, AreaTakesTheCriteriaTolerance) {
+  // --tolerance 1e-9 narrows the default (1e-6) bounds to within 1e-9 of the
+  // area, meeting them; out of (0, 1) or not a number: exit 2, one line.
+  const std::string file = dataset("three_rpr_paminsa_phi0_r110.json");
+  const auto wide = run("area " + file + " --json");
+  const auto narrow = run("area " + file + " --tolerance 1e-9 --json");
+  ASSERT_EQ(wide.status, 0) << wide.err;
+  ASSERT_EQ(narrow.status, 0) << narrow.err;
+  const auto w = nlohmann::json::parse(wide.out), n = nlohmann::json::parse(narrow.out);
+  const double wl = w["area_lower"], wu = w["area_upper"], nl = n["area_lower"], nu = n["area_upper"];
+  EXPECT_GT((wu - wl) / wu, 1e-8);
+  EXPECT_LE((nu - nl) / nu, 1e-9);
+  EXPECT_LE(std::max(nl, wl), std::min(nu, wu));  // both hold the area: they meet
+  expect_bad_input(run("area " + file + " --tolerance 0"), "--tolerance");
+  expect_bad_input(run("area " + file + " --tolerance 1.5"), "--tolerance");
+  expect_bad_input(run("area " + file + " --tolerance abc"), "--tolerance");
+}
+
 }  // namespace
 
 namespace {

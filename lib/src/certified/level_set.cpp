@@ -103,9 +103,9 @@ struct Curvature {
 
 class Tracer {
  public:
-  Tracer(const ScalarField& f, double level, const Box& cell, bool swapped, int sgn, double lipschitz, double extent,
-         double tau, const AreaWeight& weight)
-      : f_(f), level_(level), swapped_(swapped), sgn_(sgn), L_(lipschitz), tau_(tau) {
+  Tracer(const ScalarField& f, double level, const Box& cell, bool swapped, int sgn, double lipschitz, Interval slope,
+         double extent, double tau, const AreaWeight& weight)
+      : f_(f), level_(level), swapped_(swapped), sgn_(sgn), L_(lipschitz), slope_(slope), tau_(tau) {
     unit_ = weight.unit();
     c0_ = weight.c0;
     cu_ = swapped ? weight.cy : weight.cx;
@@ -182,6 +182,7 @@ class Tracer {
   bool swapped_;
   int sgn_;
   double L_;
+  Interval slope_;  // g' over B' (signed; |g'| <= L)
   double tau_;
   double u0_ = 0, u1_ = 0, v0_ = 0, v1_ = 0, w0_ = 0, w1_ = 0, scale_ = 1;
   bool unit_ = true;                 // ρ = 1
@@ -310,8 +311,29 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
     integrate(a, m, sa, sm, depth + 1, here);
     integrate(m, b, sm, sb, depth + 1, here);
   };
-  const double box_lo = std::min(sa.lo, sb.lo) - 0.5 * L_ * delta;
-  const double box_hi = std::max(sa.hi, sb.hi) + 0.5 * L_ * delta;
+  double box_lo = std::min(sa.lo, sb.lo) - 0.5 * L_ * delta;
+  double box_hi = std::max(sa.hi, sb.hi) + 0.5 * L_ * delta;
+  // Thinner where g' has a sign: the curve lies between the lines from both
+  // samples with the slopes of g' (the cell's enclosure, narrowed by the
+  // parent piece's, whose box holds the curve over [a, b]). The lower bound
+  // max(lo_a + s⁻(u - a), lo_b - s⁺(b - u)) is convex, its least value at a,
+  // b or where the two lines cross; the upper bound likewise.
+  Interval s = slope_;
+  if (parent.g1.finite() && parent.a <= a && parent.b >= b) {
+    const Interval both = intersect(s, parent.g1);
+    if (both.lo <= both.hi) s = both;
+  }
+  if (s.finite() && s.hi > s.lo) {
+    const auto lower = [&](double u) { return std::max(sa.lo + s.lo * (u - a), sb.lo - s.hi * (b - u)); };
+    const auto upper = [&](double u) { return std::min(sa.hi + s.hi * (u - a), sb.hi - s.lo * (b - u)); };
+    const double k_lo = std::clamp((sa.lo - sb.lo + s.hi * b - s.lo * a) / (s.hi - s.lo), a, b);
+    const double k_hi = std::clamp((sb.hi - sa.hi - s.lo * b + s.hi * a) / (s.hi - s.lo), a, b);
+    const double margin = 1e-13 * scale_;  // the rounding of these few operations
+    box_lo = std::max(box_lo, std::min({lower(a), lower(b), lower(k_lo)}) - margin);
+    box_hi = std::min(box_hi, std::max({upper(a), upper(b), upper(k_hi)}) + margin);
+    if (box_lo > v1_) { add_constant(a, b, v1_); return; }  // never reaches B: h = v1
+    if (box_hi < v0_) { add_constant(a, b, v0_); return; }  // h = v0
+  }
   if (box_lo >= w0_ && box_hi <= w1_) {
     // g is C² on [a, b] with its graph in S = [a, b] x [box_lo, box_hi] ⊆ B'.
     // chord error: g - chord = -g''(ξ) (u - a)(b - u) / 2, |(u - a)(b - u)| / 2 <= Δ² / 8.
@@ -527,6 +549,7 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
   // gradient and, where that fails, the centred one.
   double lipschitz = slope(j);
   double extent = 1.5 * lipschitz * du + 1e-12 * du;
+  Interval signed_slope = Interval::whole();
   bool ok = false;
   int sgn = 1;
   for (int attempt = 0; attempt < 4 && std::isfinite(extent); ++attempt) {
@@ -543,13 +566,14 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
     if (le * du <= extent) {
       lipschitz = le;
       sgn = (swapped ? je.dx.lo : je.dy.lo) > 0.0 ? 1 : -1;
+      signed_slope = -((swapped ? je.dy : je.dx) / (swapped ? je.dx : je.dy));
       ok = true;
       break;
     }
     extent = 1.5 * le * du + 1e-12 * du;
   }
   if (!ok) return t;
-  Tracer tracer(f, level, cell, swapped, sgn, lipschitz, extent, tau, weight);
+  Tracer tracer(f, level, cell, swapped, sgn, lipschitz, signed_slope, extent, tau, weight);
   tracer.run(t);
   return t;
 }
