@@ -127,9 +127,10 @@ def main():
         "",
         "Where the time goes (docs/theory/level_sets.md): without charts, the DexTAR cases' undecided cells sit "
         "where the level curve meets W's boundary tangentially (the field has a square-root singularity there) "
-        "and at the base joints, where every level curve ends; the charts trace both like any curve. What is left "
-        "is the traced cells' own cost: about one cell per cover leaf along each curve, each with a few certified "
-        "root brackets and interval jets.",
+        "and at the base joints, where every level curve ends; the charts trace both like any curve (their cells "
+        "square in the charts' own units, the base charts of radius R/6). What is left is the traced cells' own "
+        "cost: about one cell per cover leaf along each curve (2 400–4 900 for the DexTAR), each with a few "
+        "certified root brackets and interval jets.",
     ]
     update_report(a.report, HEADING, "\n".join(lines))
     print(f"level_sets.py: wrote {n} cases to {a.report}")
