@@ -254,7 +254,8 @@ certified::LevelSetResult charted_sublevel_set(const std::vector<certified::Cons
     // traces (a tangency at the window's edge) are then no larger than with
     // as many rows as columns (their area had kept the DexTAR's 1e-9 runs at
     // 9e-9: α ≤ 20°, a band chart's 4 cells).
-    co.refine_depth += static_cast<int>(std::ceil(std::log2(static_cast<double>(co.base) / co.base_rows)));
+    co.refine_depth = std::min(
+        40, co.refine_depth + static_cast<int>(std::ceil(std::log2(static_cast<double>(co.base) / co.base_rows))));
     // The budget in area units: relative to the part's own area it would be
     // far looser than the rest's (the part is small), relative to the
     // window's far tighter (the part fills little of it: the band charts of
