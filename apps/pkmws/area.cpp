@@ -35,7 +35,7 @@ void add_area(CLI::App& app, std::vector<Command>& commands) {
   auto max_time = std::make_shared<double>(0.0);
   add_max_time_option(sub, *max_time);
   commands.push_back({sub, [file, json, depth, max_time, rectangle_precision, rectangle_angle, tolerance] {
-    if (!(*tolerance > 0.0 && *tolerance < 1.0)) throw io::InputError("--tolerance: must be in (0, 1)");
+    check_tolerance(*tolerance);
     const io::MechanismFile mech = io::load_mechanism(*file);
     // Criteria limits are certified level sets: bounded by --max-time, with progress.
     const CertifiedWork work("area", *max_time);

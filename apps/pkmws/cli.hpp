@@ -69,6 +69,8 @@ class CertifiedWork {
 };
 /// Adds `--max-time SECONDS` (a positive number) to a certified command.
 void add_max_time_option(CLI::App* sub, double& seconds);
+/// A certified level set's --tolerance (relative bound width): InputError outside (0, 1).
+void check_tolerance(double tolerance);
 
 /// The thresholds of `--levels a,b,c`: decimal numbers, increasing (levels.cpp).
 std::vector<double> parse_levels(const std::string& text);

@@ -203,6 +203,10 @@ std::string format_g(double v, int digits) {
   return buf;
 }
 
+void check_tolerance(double tolerance) {
+  if (!(tolerance > 0.0 && tolerance < 1.0)) throw io::InputError("--tolerance: must be in (0, 1)");
+}
+
 void add_max_time_option(CLI::App* sub, double& seconds) {
   sub->add_option("--max-time", seconds,
                   "Stop refining after SECONDS: the certified bounds reached so far, labelled `stopped` "

@@ -37,7 +37,7 @@ void add_levels(CLI::App& app, std::vector<Command>& commands) {
   sub->add_flag("--json", a->json, "Print one JSON object");
   add_max_time_option(sub, a->max_time);
   commands.push_back({sub, [a] {
-    if (!(a->tolerance > 0.0 && a->tolerance < 1.0)) throw io::InputError("--tolerance: must be in (0, 1)");
+    check_tolerance(a->tolerance);
     const io::MechanismFile mech = io::load_mechanism(a->file);
     report::LevelsOptions options;
     options.criterion = a->criterion;

@@ -27,6 +27,12 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double max_retry_gain = 64.0;
 
 
+// The bound width a level set aims at for an area: relative, or absolute
+// where that is larger (LevelSetOptions).
+double target_width(const LevelSetOptions& options, double area) {
+  return std::max(options.relative_tolerance * area, options.absolute_tolerance);
+}
+
 // Value enclosure of F over a box: natural form, intersected with the centred
 // (mean-value) form when the box lies in F's smooth domain.
 Interval enclose_value(const ScalarField& f, const Box& box, double level) {
@@ -858,7 +864,7 @@ Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const W
       for (const Box& b : pass.cover.undecided) undecided_est += w.box(b);
     }
     const double area_est = std::max(inside_est + 0.5 * undecided_est, 1e-6 * w.box(co.window));
-    tau = std::max(options.relative_tolerance * area_est, options.absolute_tolerance) / length;
+    tau = target_width(options, area_est) / length;
   }
   pass.tau = tau;
   pass.depth = options.refine_depth;
@@ -1057,7 +1063,7 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
   // bounds reached are the answer. Points go
   // up to 16 levels deeper (each level costs the same few cells). Where the
   // kind is not known yet, a one-level step measures it.
-  const auto target = [&] { return std::max(options.relative_tolerance * r.region.area_upper, options.absolute_tolerance); };
+  const auto target = [&] { return target_width(options, r.region.area_upper); };
   const auto width = [&] { return r.region.area_upper - r.region.area_lower; };
   if (!options.trace || !options.retries || r.stopped || width() <= target()) return final_result(pass, std::move(r));
   if (r.traced_width > 0.5 * width()) {
