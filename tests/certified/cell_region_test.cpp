@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 
 #include "pkmws/geometry/primitives.hpp"
@@ -217,6 +218,128 @@ TEST(CertifiedRegion, BoxesRegionHandlesPinchesHolesAndIslands) {
   const auto cs = pkmws::certified::boxes_region(c);
   EXPECT_NEAR(cs.area(), 7.0, 1e-14);
   EXPECT_FALSE(cs.contains({1.5, 1.5}));
+}
+
+// Shoelace area of a simple polygon (either orientation).
+double shoelace(const std::vector<Point>& p) {
+  double s = 0.0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const Point& a = p[k];
+    const Point& b = p[(k + 1) % p.size()];
+    s += a.x * b.y - a.y * b.x;
+  }
+  return 0.5 * std::abs(s);
+}
+
+std::vector<Point> corners(const Box& b) { return {b.min, {b.max.x, b.min.y}, b.max, {b.min.x, b.max.y}}; }
+
+TEST(CertifiedRegion, PolygonsRegionUnitesPiecesOfCells) {
+  using pkmws::certified::polygons_region;
+  using pkmws::geometry::Region;
+  // Pinches, holes and islands as in boxes_region, the pieces as polygons.
+  EXPECT_TRUE(polygons_region({}).empty());
+  const auto pinch = polygons_region({corners(box(0, 0, 1, 1)), corners(box(1, 1, 2, 2))});
+  EXPECT_NEAR(pinch.area(), 2.0, 1e-14);
+  EXPECT_FALSE(pinch.contains({0.5, 1.5}));
+  std::vector<std::vector<Point>> framed;
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 5; ++i)
+      if (i == 0 || j == 0 || i == 4 || j == 4 || (i == 2 && j == 2)) framed.push_back(corners(box(i, j, i + 1, j + 1)));
+  const auto fr = polygons_region(framed);
+  EXPECT_NEAR(fr.area(), 17.0, 1e-14);
+  EXPECT_TRUE(fr.contains({2.5, 2.5}));
+  EXPECT_FALSE(fr.contains({1.5, 2.5}));
+  // A triangle in a cell whose apex touches the cell above at one point of
+  // its edge, and a T-junction: a big cell beside two small ones.
+  const std::vector<std::vector<Point>> touch{{{0, 0}, {2, 0}, {1, 1}}, corners(box(0, 1, 2, 2)), corners(box(2, 0, 4, 2)),
+                                              corners(box(4, 0, 5, 1)), corners(box(4, 1, 5, 2))};
+  const auto t = polygons_region(touch);
+  EXPECT_NEAR(t.area(), 1.0 + 2.0 + 4.0 + 2.0, 1e-14);
+  EXPECT_FALSE(t.contains({0.2, 0.8}));
+  EXPECT_TRUE(t.contains({1.0, 0.5}));
+
+  // Random quadtrees: each leaf empty, whole, or the part of it under (or
+  // over) a random piecewise-linear function with jumps, clamped to the cell
+  // (as a traced cell gives). Against CGAL's union of the same polygons and
+  // the sum of their areas (the pieces' interiors are disjoint).
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 12; ++trial) {
+    std::vector<Box> leaves;
+    std::vector<Box> todo{box(-1.3, 0.2, 2.1, 3.6)};
+    while (!todo.empty()) {
+      const Box b = todo.back();
+      todo.pop_back();
+      if (b.width() > 0.1 && unit(rng) < 0.7) {
+        const double xm = 0.5 * (b.min.x + b.max.x), ym = 0.5 * (b.min.y + b.max.y);
+        todo.push_back(box(b.min.x, b.min.y, xm, ym));
+        todo.push_back(box(xm, b.min.y, b.max.x, ym));
+        todo.push_back(box(b.min.x, ym, xm, b.max.y));
+        todo.push_back(box(xm, ym, b.max.x, b.max.y));
+      } else {
+        leaves.push_back(b);
+      }
+    }
+    std::vector<std::vector<Point>> pieces;
+    double sum = 0.0;
+    for (const Box& b : leaves) {
+      const double kind = unit(rng);
+      if (kind < 0.3) continue;
+      if (kind < 0.55) {
+        pieces.push_back(corners(b));
+      } else {
+        // Under a function of x (or, swapped, left of a function of y),
+        // clamped to the cell; its values at the ends touch the cell's
+        // edges now and then.
+        const bool swapped = unit(rng) < 0.5, below = unit(rng) < 0.5;
+        const double u0 = swapped ? b.min.y : b.min.x, u1 = swapped ? b.max.y : b.max.x;
+        const double v0 = swapped ? b.min.x : b.min.y, v1 = swapped ? b.max.x : b.max.y;
+        std::vector<std::pair<double, double>> fn;  // (u, v)
+        const int n = 1 + static_cast<int>(unit(rng) * 5);
+        for (int k = 0; k <= n; ++k) {
+          const double u = k == n ? u1 : u0 + (u1 - u0) * k / n;
+          const double r = unit(rng);
+          const double v = r < 0.15 ? v1 : r < 0.3 ? v0 : v0 + (v1 - v0) * unit(rng);
+          fn.push_back({u, v});
+          if (k > 0 && k < n && unit(rng) < 0.3) fn.push_back({u, v0 + (v1 - v0) * unit(rng)});  // a jump
+        }
+        const double base = below ? v0 : v1;
+        std::vector<Point> run;
+        const auto xy = [&](double u, double v) { return swapped ? Point{v, u} : Point{u, v}; };
+        const auto emit = [&](double u) {
+          if (run.empty()) return;
+          run.push_back(xy(u, base));
+          std::vector<Point> clean;
+          for (const Point& q : run) if (clean.empty() || !(clean.back() == q)) clean.push_back(q);
+          if (clean.size() >= 3 && shoelace(clean) > 0.0) {
+            pieces.push_back(clean);
+            sum += shoelace(clean);
+          }
+          run.clear();
+        };
+        double last = u0;
+        for (const auto& [u, v] : fn) {
+          if (v == base) {
+            if (!run.empty()) run.push_back(xy(u, v));
+            emit(u);
+            last = u;
+            continue;
+          }
+          if (run.empty()) run.push_back(xy(last, base));
+          run.push_back(xy(u, v));
+        }
+        emit(fn.back().first);
+        continue;
+      }
+      sum += b.width() * b.height();
+    }
+    const Region mine = polygons_region(pieces);
+    std::vector<Region> parts;
+    for (const auto& p : pieces) parts.push_back(pkmws::geometry::polygon(p));
+    const Region cgal = Region::unite_all(parts);
+    EXPECT_NEAR(mine.area(), sum, 1e-12 * (1.0 + sum)) << trial;
+    EXPECT_NEAR(mine.symmetric_difference(cgal).area(), 0.0, 1e-12) << trial;
+  }
 }
 
 }  // namespace

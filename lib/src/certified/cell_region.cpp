@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <limits>
 #include <tuple>
@@ -284,6 +285,166 @@ Region boxes_region(const std::vector<Box>& boxes) {
     for (const auto& [i, j] : loop) pts.push_back({xs[static_cast<std::size_t>(i)], ys[static_cast<std::size_t>(j)]});
     polygons.push_back(geometry::polygon(pts));
   }
+  if (polygons.size() == 1) return polygons.front();
+  return Region::symmetric_difference_all(polygons);
+}
+
+namespace {
+
+// A point as a hash key (-0.0 as 0.0: they are the same vertex).
+struct PointKey {
+  std::size_t operator()(const geometry::Point& p) const {
+    const auto bits = [](double v) {
+      std::uint64_t u = 0;
+      const double z = v == 0.0 ? 0.0 : v;
+      std::memcpy(&u, &z, sizeof u);
+      return u;
+    };
+    return std::hash<std::uint64_t>()(bits(p.x) * 0x9e3779b97f4a7c15ULL ^ bits(p.y));
+  }
+};
+
+// The clockwise angle in (0, 2π] from direction r to direction d.
+double clockwise_angle(geometry::Point r, geometry::Point d) {
+  double t = std::atan2(d.x * r.y - d.y * r.x, d.x * r.x + d.y * r.y);
+  if (t <= 0.0) t += 2.0 * std::acos(-1.0);
+  return t;
+}
+
+}  // namespace
+
+Region polygons_region(const std::vector<std::vector<geometry::Point>>& pieces) {
+  using geometry::Point;
+  struct Edge {
+    Point a, b;
+  };
+  struct Span {
+    double lo, hi;
+    int dir;  // +1: the edge runs towards increasing coordinate
+  };
+  std::vector<Edge> edges;
+  std::unordered_map<double, std::vector<Span>> rows, columns;  // axis-aligned edges by y / by x
+  std::vector<Point> p;
+  for (const auto& piece : pieces) {
+    p.clear();
+    for (const Point& v : piece) {
+      if (p.empty() || !(p.back() == v)) p.push_back(v);
+    }
+    while (p.size() > 1 && p.front() == p.back()) p.pop_back();
+    if (p.size() < 3) continue;
+    double twice_area = 0.0;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const Point& a = p[k];
+      const Point& b = p[(k + 1) % p.size()];
+      twice_area += a.x * b.y - a.y * b.x;
+    }
+    if (twice_area == 0.0) continue;
+    if (twice_area < 0.0) std::reverse(p.begin(), p.end());  // counter-clockwise: the piece on each edge's left
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const Point& a = p[k];
+      const Point& b = p[(k + 1) % p.size()];
+      if (a.y == b.y) rows[a.y].push_back({std::min(a.x, b.x), std::max(a.x, b.x), a.x < b.x ? 1 : -1});
+      else if (a.x == b.x) columns[a.x].push_back({std::min(a.y, b.y), std::max(a.y, b.y), a.y < b.y ? 1 : -1});
+      else edges.push_back({a, b});
+    }
+  }
+  // A vertex on another piece's axis-aligned edge (a piece touching a
+  // neighbour's side at a point) splits that edge: the loops then meet at
+  // the vertex, where they are split, instead of touching an edge.
+  for (const auto& piece : pieces) {
+    for (const Point& v : piece) {
+      if (auto row = rows.find(v.y); row != rows.end()) row->second.push_back({v.x, v.x, 0});
+      if (auto column = columns.find(v.x); column != columns.end()) column->second.push_back({v.y, v.y, 0});
+    }
+  }
+  // Shared edges cancel: on each axis line, the net direction of the edges
+  // over each interval between their ends (two pieces on either side of an
+  // edge run it in opposite directions; interior-disjoint pieces never in the same).
+  const auto cancel = [&](std::unordered_map<double, std::vector<Span>>& lines, bool horizontal) {
+    std::vector<std::pair<double, int>> events;
+    for (auto& [c, spans] : lines) {
+      events.clear();
+      for (const Span& s : spans) {
+        events.push_back({s.lo, s.dir});
+        events.push_back({s.hi, -s.dir});
+      }
+      std::sort(events.begin(), events.end());
+      int sum = 0;
+      for (std::size_t k = 0; k + 1 < events.size(); ++k) {
+        sum += events[k].second;
+        const double t0 = events[k].first, t1 = events[k + 1].first;
+        if (sum == 0 || !(t1 > t0)) continue;
+        const Point a = horizontal ? Point{t0, c} : Point{c, t0}, b = horizontal ? Point{t1, c} : Point{c, t1};
+        edges.push_back(sum > 0 ? Edge{a, b} : Edge{b, a});
+      }
+    }
+  };
+  cancel(rows, true);
+  cancel(columns, false);
+
+  // Chain the edges into loops: at a vertex with several ways on (where
+  // pieces touch at a point), the sharpest left turn, which keeps each
+  // loop to one side of the touching point.
+  std::unordered_multimap<Point, std::size_t, PointKey> outgoing;
+  outgoing.reserve(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e) outgoing.insert({edges[e].a, e});
+  std::vector<bool> used(edges.size(), false);
+  std::vector<Region> polygons;
+  std::vector<Point> seq, stack;
+  std::unordered_map<Point, std::size_t, PointKey> at;
+  const auto emit = [&](std::vector<Point> loop) {
+    // Drop the vertices inside straight axis-aligned runs.
+    std::vector<Point> out;
+    const std::size_t n = loop.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const Point& a = loop[(k + n - 1) % n];
+      const Point& v = loop[k];
+      const Point& b = loop[(k + 1) % n];
+      if ((a.x == v.x && v.x == b.x) || (a.y == v.y && v.y == b.y)) continue;
+      out.push_back(v);
+    }
+    if (out.size() >= 3) polygons.push_back(geometry::polygon(out));
+  };
+  for (std::size_t first = 0; first < edges.size(); ++first) {
+    if (used[first]) continue;
+    seq.clear();
+    std::size_t cur = first;
+    used[cur] = true;
+    for (;;) {
+      seq.push_back(edges[cur].a);
+      const Point back{edges[cur].a.x - edges[cur].b.x, edges[cur].a.y - edges[cur].b.y};
+      std::size_t next = edges.size();
+      double best = 0.0;
+      auto [lo, hi] = outgoing.equal_range(edges[cur].b);
+      for (auto it = lo; it != hi; ++it) {
+        const std::size_t cand = it->second;
+        if (used[cand] && cand != first) continue;
+        const Point d{edges[cand].b.x - edges[cand].a.x, edges[cand].b.y - edges[cand].a.y};
+        const double angle = clockwise_angle(back, d);
+        if (next == edges.size() || angle < best) { best = angle; next = cand; }
+      }
+      if (next == edges.size() || next == first) break;
+      used[next] = true;
+      cur = next;
+    }
+    // Split at repeated vertices: each piece is a simple loop.
+    stack.clear();
+    at.clear();
+    for (const Point& v : seq) {
+      auto found = at.find(v);
+      if (found != at.end()) {
+        const std::size_t pos = found->second;
+        std::vector<Point> piece(stack.begin() + static_cast<std::ptrdiff_t>(pos), stack.end());
+        for (std::size_t r = pos; r < stack.size(); ++r) at.erase(stack[r]);
+        stack.resize(pos);
+        emit(std::move(piece));
+      }
+      at[v] = stack.size();
+      stack.push_back(v);
+    }
+    emit(stack);
+  }
+  if (polygons.empty()) return Region{};
   if (polygons.size() == 1) return polygons.front();
   return Region::symmetric_difference_all(polygons);
 }

@@ -587,8 +587,8 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
 // The part of the cell between an envelope and the cell's base edge (v0 when
 // S lies below the curve, v1 when above), as simple polygons: one per run
 // where the envelope is off the base edge.
-void envelope_polygons(const CellTrace& t, const Box& cell, bool use_hi, std::vector<std::vector<Point>>& out) {
-  const auto& env = use_hi ? t.env_hi : t.env_lo;
+void envelope_polygons(const std::vector<PLPoint>& env, const CellTrace& t, const Box& cell,
+                       std::vector<std::vector<Point>>& out) {
   const double v0 = t.swapped ? cell.min.x : cell.min.y, v1 = t.swapped ? cell.max.x : cell.max.y;
   const double base = t.sgn > 0 ? v0 : v1;
   auto xy = [&](double u, double v) { return t.swapped ? Point{v, u} : Point{u, v}; };
@@ -620,6 +620,95 @@ void envelope_polygons(const CellTrace& t, const Box& cell, bool use_hi, std::ve
   if (!env.empty()) emit(env.back().u);
 }
 
+void envelope_polygons(const CellTrace& t, const Box& cell, bool use_hi, std::vector<std::vector<Point>>& out) {
+  envelope_polygons(use_hi ? t.env_hi : t.env_lo, t, cell, out);
+}
+
+// A piecewise-linear function p with few vertices on one side of the
+// envelope env (p >= env when `above`, else p <= env, at every u) and within
+// `tol` of it: Douglas-Peucker's chords, each moved to the envelope's side by
+// its largest deviation (with a margin for rounding), then clamped to
+// [v0, v1] (clamping keeps the side: it is monotone). Where consecutive chords
+// end at different heights, p jumps (two vertices at one u).
+std::vector<PLPoint> follow_envelope(const std::vector<PLPoint>& env, double v0, double v1, bool above, double tol) {
+  std::vector<PLPoint> chords;
+  if (env.size() < 2) return env;
+  double scale = std::max(std::abs(v0), std::abs(v1));
+  for (const PLPoint& p : env) scale = std::max({scale, std::abs(p.u), std::abs(p.w)});
+  const double margin = 8.0 * std::numeric_limits<double>::epsilon() * scale;
+  std::vector<std::pair<std::size_t, std::size_t>> todo{{0, env.size() - 1}};
+  while (!todo.empty()) {
+    const auto [i, j] = todo.back();
+    todo.pop_back();
+    const PLPoint& a = env[i];
+    const PLPoint& b = env[j];
+    const double du = b.u - a.u;
+    if (j == i + 1 || !(du > 0.0)) {  // one piece, or a jump: as it is
+      for (std::size_t k = i; k <= j; ++k) chords.push_back(env[k]);
+      continue;
+    }
+    const auto chord = [&](double u) { return a.w + (b.w - a.w) * ((u - a.u) / du); };
+    double dmax = 0.0, dmin = 0.0, worst = 0.0;
+    std::size_t split = i;
+    for (std::size_t k = i + 1; k < j; ++k) {
+      const double d = env[k].w - chord(env[k].u);
+      dmax = std::max(dmax, d);
+      dmin = std::min(dmin, d);
+      if (std::abs(d) > worst) { worst = std::abs(d); split = k; }
+    }
+    if (dmax - dmin <= tol || split == i) {
+      // A level chord through level vertices (an envelope along the cell's
+      // edge) is exact: no margin, so that it stays on the edge.
+      const bool level = a.w == b.w && dmax == 0.0 && dmin == 0.0;
+      const double shift = level ? 0.0 : above ? dmax + margin : dmin - margin;
+      chords.push_back({a.u, a.w + shift});
+      chords.push_back({b.u, b.w + shift});
+      continue;
+    }
+    todo.push_back({split, j});  // popped after [i, split]: left to right
+    todo.push_back({i, split});
+  }
+  // Clamped to [v0, v1], with the vertices where a chord crosses v0 or v1.
+  std::vector<PLPoint> out;
+  out.reserve(chords.size() + 4);
+  for (std::size_t k = 0; k < chords.size(); ++k) {
+    const PLPoint& p = chords[k];
+    if (k > 0) {
+      const PLPoint& q = chords[k - 1];
+      if (p.u > q.u && p.w != q.w) {
+        std::array<double, 2> cuts{};
+        int n = 0;
+        for (double level : {v0, v1}) {
+          const double s = (level - q.w) / (p.w - q.w);
+          if (s > 0.0 && s < 1.0) cuts[static_cast<std::size_t>(n++)] = q.u + s * (p.u - q.u);
+        }
+        if (n == 2 && cuts[0] > cuts[1]) std::swap(cuts[0], cuts[1]);
+        // The crossing on the level itself (exactly: a neighbouring cell's
+        // edge), its u moved by a few ulps to the side the chord keeps: later
+        // where p rises (below the envelope) or falls (above), else earlier.
+        const double nudge = ((p.w > q.w) != above ? 4.0 : -4.0) * std::numeric_limits<double>::epsilon() *
+                             std::max(std::abs(q.u), std::abs(p.u));
+        for (int c = 0; c < n; ++c) {
+          const double u = std::clamp(cuts[static_cast<std::size_t>(c)] + nudge, q.u, p.u);
+          const double s = (u - q.u) / (p.u - q.u);
+          out.push_back({u, q.w + s * (p.w - q.w) < 0.5 * (v0 + v1) ? v0 : v1});
+        }
+      }
+    }
+    out.push_back({p.u, std::clamp(p.w, v0, v1)});
+  }
+  // A jump is its first and last vertex (the ones between could run back
+  // along the jump: a polygon that is not simple).
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const bool inside_jump = n >= 2 && out[n - 1].u == out[k].u && out[n - 2].u == out[k].u;
+    if (inside_jump) out[n - 1] = out[k];
+    else if (n == 0 || out[n - 1].u != out[k].u || out[n - 1].w != out[k].w) out[n++] = out[k];
+  }
+  out.resize(n);
+  return out;
+}
+
 // The area bounds of a box that is in S wherever it is in W, from splits
 // against W alone: parts inside W count fully, parts across W's boundary at
 // the depth limit count as undecided.
@@ -640,34 +729,6 @@ void split_within(const WithinTest& within_test, const AreaWeight& weight, const
   split_within(within_test, weight, make_box(xm, b.min.y, b.max.x, ym), depth - 1, inside_area, undecided_area);
   split_within(within_test, weight, make_box(b.min.x, ym, xm, b.max.y), depth - 1, inside_area, undecided_area);
   split_within(within_test, weight, make_box(xm, ym, b.max.x, b.max.y), depth - 1, inside_area, undecided_area);
-}
-
-// Boxes under (sgn > 0) / above (sgn < 0) a piecewise-linear envelope: on each
-// piece [u_k, u_k+1] the envelope lies between its end values, so the box up
-// to the smaller (inner) or larger (outer) end is inside / contains the part.
-void step_boxes(const CellTrace& t, const Box& cell, bool inner, std::vector<Box>& out) {
-  // One box per traced cell (a long chain of tiny boxes makes CGAL's lazy
-  // area evaluation recurse too deeply): up to the envelope's extreme value.
-  const auto& env = (t.sgn > 0) == inner ? t.env_lo : t.env_hi;
-  const double v0 = t.swapped ? cell.min.x : cell.min.y, v1 = t.swapped ? cell.max.x : cell.max.y;
-  const double u0 = t.swapped ? cell.min.y : cell.min.x, u1 = t.swapped ? cell.max.y : cell.max.x;
-  if (env.empty()) return;
-  double wmin = v1, wmax = v0;
-  for (const PLPoint& p : env) {
-    const double w = std::clamp(p.w, v0, v1);
-    wmin = std::min(wmin, w);
-    wmax = std::max(wmax, w);
-  }
-  double lo, hi;
-  if (t.sgn > 0) {
-    lo = v0;
-    hi = inner ? wmin : wmax;
-  } else {
-    lo = inner ? wmax : wmin;
-    hi = v1;
-  }
-  if (!(hi > lo)) return;
-  out.push_back(t.swapped ? make_box(lo, u0, hi, u1) : make_box(u0, lo, u1, hi));
 }
 
 // The bound on the work shared by the threads of one refinement: the deadline
@@ -1004,27 +1065,48 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
 }
 
 // The exact inner/outer regions of the pass `result` summarises (asked with
-// build_regions; built once, for the final pass): from boxes, each traced cell
-// contributing the box below (inner) / around (outer) its envelopes, so
-// area(inner) <= area_lower and area(outer) >= area_upper (the bounds use the
-// envelopes themselves).
+// build_regions; built once, for the final pass): the cells certified in S
+// (and, for outer, the undecided ones) as boxes, and each traced cell's part
+// on S's side of a few chords that follow its inner / outer envelope within
+// a quarter of τ (follow_envelope). So inner ⊆ S ⊆ outer, area(inner) <=
+// area_lower and area(outer) >= area_upper, each within about half of the
+// traced cells' width more.
 void add_regions(const Pass& pass, const Region& within, const LevelSetOptions& options, LevelSetResult& result) {
   // Past the deadline the exact regions (seconds to minutes of Boolean
   // operations on many boxes) are not started either.
   if (std::chrono::steady_clock::now() >= options.deadline) result.stopped = true;
   if (result.stopped) return;  // stopped: too many cells to be worth it
-  std::vector<Box> in_boxes = result.inside_boxes, out_boxes = result.inside_boxes;
+  const bool want_inner = options.regions != LevelSetOptions::Regions::outer;
+  const bool want_outer = options.regions != LevelSetOptions::Regions::inner;
+  std::vector<std::vector<Point>> in_parts, out_parts;
+  const auto corners = [](const Box& b) {
+    return std::vector<Point>{b.min, {b.max.x, b.min.y}, b.max, {b.min.x, b.max.y}};
+  };
+  for (const Box& b : result.inside_boxes) {
+    if (want_inner) in_parts.push_back(corners(b));
+    if (want_outer) out_parts.push_back(corners(b));
+  }
+  if (want_outer) {
+    for (const Box& b : result.undecided_boxes) out_parts.push_back(corners(b));
+  }
+  const double tol = 0.25 * pass.tau;
   for (const LeafResult& r : pass.per_leaf) {
     for (const auto* traced : {&r.traced, &r.traced_across}) {
       for (const auto& [cell, t] : *traced) {
-        step_boxes(t, cell, true, in_boxes);
-        step_boxes(t, cell, false, out_boxes);
+        const double v0 = t.swapped ? cell.min.x : cell.min.y, v1 = t.swapped ? cell.max.x : cell.max.y;
+        for (const bool inner : {true, false}) {
+          if (!(inner ? want_inner : want_outer)) continue;
+          // S's part lies below h (sgn > 0) or above it: inner takes the
+          // envelope on S's side and stays on it, outer the other one.
+          const bool use_hi = (t.sgn > 0) != inner;
+          envelope_polygons(follow_envelope(use_hi ? t.env_hi : t.env_lo, v0, v1, use_hi, tol), t, cell,
+                            inner ? in_parts : out_parts);
+        }
       }
     }
   }
-  out_boxes.insert(out_boxes.end(), result.undecided_boxes.begin(), result.undecided_boxes.end());
-  result.region.inner = within.intersect(boxes_region(in_boxes));
-  result.region.outer = within.intersect(boxes_region(out_boxes));
+  if (want_inner) result.region.inner = within.intersect(polygons_region(in_parts));
+  if (want_outer) result.region.outer = within.intersect(polygons_region(out_parts));
 }
 
 }  // namespace

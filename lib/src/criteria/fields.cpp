@@ -201,6 +201,13 @@ void limit_singularity_distance(const mechanisms::Design& file, const geometry::
     const geometry::Region& around = r.outer.empty() && r.area_upper > 0.0 ? within : r.outer;
     r.area_lower = std::max(0.0, r.area_lower - around.intersect(t.inner_tube).area());
     r.area_upper = std::max(r.area_lower, r.area_upper - r.inner.intersect(t.outer_tube).area());
+    // The regions' own areas bound it too, and area(inner) <= area_lower <=
+    // area_upper <= area(outer) must hold: the better of both (with regions
+    // that follow W's level curves, the subtraction above can be the looser).
+    if (!r.outer.empty()) {
+      r.area_lower = std::max(r.area_lower, inner.area());
+      r.area_upper = std::max(r.area_lower, std::min(r.area_upper, outer.area()));
+    }
   }
   r.inner = inner;
   r.outer = outer;
@@ -338,7 +345,10 @@ LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::ve
       if (!within_test) within_test = entry.first.within_test;  // one mechanism: one workspace test
     }
     certified::LevelSetOptions o = options;
-    if (min_distance) o.build_regions = true;  // the tubes are cut from the regions
+    if (min_distance) {  // the tubes are cut from both regions
+      o.build_regions = true;
+      o.regions = certified::LevelSetOptions::Regions::both;
+    }
     // Charts where the fields are singular on W's boundary or at a point of W
     // (the bounds only: regions are built in the plane).
     std::optional<CriterionFields::Charts> charts;

@@ -196,6 +196,7 @@ criteria::LimitedWorkspace limited_workspace(const io::MechanismFile& file, cons
   certified::LevelSetOptions o;
   o.relative_tolerance = options.tolerance;
   o.build_regions = options.build_regions;
+  o.regions = options.regions;
   o.charts = options.charts;
   o.threads = options.threads;
   if (options.refine_depth) o.refine_depth = *options.refine_depth;

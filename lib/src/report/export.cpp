@@ -85,7 +85,8 @@ ExportReport export_file(const io::MechanismFile& mech, const ExportOptions& o) 
     return out;
   }
   // With criteria limits ([Briot] figs. 10, 13): the certified limited
-  // region, its enclosures built at cell resolution.
+  // region, the enclosure written (only it is built) following the traced
+  // level curves.
   const bool limited = mech.criteria.any() && !o.real;
   // Which enclosure: stated in GeoJSON, DXF and SVG; WKT and CSV carry no
   // metadata, so a certified region needs --bound there (checked before the
@@ -104,11 +105,13 @@ ExportReport export_file(const io::MechanismFile& mech, const ExportOptions& o) 
   }
   require_bound(limited || o.real);
   out.content = format == io::ExportFormat::svg && !o.bare ? "figure" : "boundary";
+  const std::string bound = !o.bound.empty() ? o.bound : o.real ? "inner" : "outer";
   certified::CertifiedRegion enclosure;
   if (limited) {
     LimitedOptions lo;
     lo.tolerance = kLimitedTolerance;
     lo.build_regions = true;
+    lo.regions = bound == "inner" ? certified::LevelSetOptions::Regions::inner : certified::LevelSetOptions::Regions::outer;
     lo.budget = o.budget;
     const auto lw = limited_workspace(mech, lo);
     if (lw.detail.stopped) {
@@ -120,9 +123,10 @@ ExportReport export_file(const io::MechanismFile& mech, const ExportOptions& o) 
     enclosure = pkmws::workspace(mech);
   }
   require_bound(o.real || !enclosure.exact);
-  const std::string bound = !o.bound.empty() ? o.bound : o.real ? "inner" : "outer";
   geometry::Region region = enclosure.exact || bound == "outer" ? enclosure.outer : enclosure.inner;
-  if (enclosure.outer.empty()) {
+  // Empty: nothing in the outer enclosure (a limited region builds only the
+  // bound written; its upper bound says the same).
+  if (limited ? !(enclosure.area_upper > 0.0) : enclosure.outer.empty()) {
     throw io::InputError(mech.path + ": the workspace is empty (impossible geometry): nothing to export");
   }
   io::ExportOptions options;

@@ -61,6 +61,14 @@ CellCover cover(const CellTest& test, const CellOptions& options);
 /// boxes of equal rows are merged first, then one aggregated union).
 geometry::Region boxes_region(const std::vector<geometry::Box>& boxes);
 
+/// The union of simple polygons whose interiors are disjoint and whose shared
+/// edges are axis-aligned (cells of a quadtree and pieces inside them) as one
+/// exact region: shared edges cancel, the rest is chained into loops (split
+/// where pieces touch at a point), then one aggregated symmetric difference.
+/// Vertices are used exactly as given: a shared edge cancels only where both
+/// pieces give the same coordinate.
+geometry::Region polygons_region(const std::vector<std::vector<geometry::Point>>& pieces);
+
 /// inner ⊆ true ⊆ outer with the areas of both; `exact` when inner and outer
 /// are the same region (every boundary piece is an arc or a segment).
 struct CertifiedRegion {

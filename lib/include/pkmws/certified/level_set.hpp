@@ -88,10 +88,16 @@ struct LevelSetOptions {
   int refine_depth = 8;
   /// 0: every hardware thread, 1: serial. Results do not depend on it.
   int threads = 0;
-  /// Build the inner/outer regions (exact, from boxes at cell resolution: a
-  /// traced cell gives the box below/around its envelopes, so area(inner) <=
-  /// area_lower and area(outer) >= area_upper). Costly; the bounds do not need it.
+  /// Build the inner/outer regions (exact: the cells certified in S, and in
+  /// each traced cell its part on S's side of a few chords that follow its
+  /// envelopes within τ/4, so area(inner) <= area_lower and area(outer) >=
+  /// area_upper, each within about half the traced width). Costly; the bounds
+  /// do not need it.
   bool build_regions = false;
+  /// Which of them build_regions builds: both, or the one a caller uses (an
+  /// export writes one; the other is left empty).
+  enum class Regions { both, inner, outer };
+  Regions regions = Regions::both;
   /// Whether a caller that knows charts of the fields (criteria::limited_workspace)
   /// may trace parts of W in them: the bounds are then narrower and faster, but
   /// the pieces for figures (inside_boxes, inner_polygons) cover the part traced

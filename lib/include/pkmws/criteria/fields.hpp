@@ -192,7 +192,7 @@ bool criteria_domain_exact(const mechanisms::Design& file);
 /// or nothing when its workspace is exact.
 std::optional<CriterionFields::WorkspaceSets> workspace_sets(const mechanisms::Design& file);
 /// The workspace as an enclosure: for a workspace cut by level sets, the
-/// traced sets at `relative_tolerance` (regions built at cell resolution),
+/// traced sets at `relative_tolerance` (regions following the traced curves),
 /// else Mechanism::workspace_enclosure() (exact where it can be).
 certified::CertifiedRegion workspace_enclosure(const mechanisms::Design& file, double relative_tolerance = 1e-6);
 

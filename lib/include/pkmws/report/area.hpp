@@ -110,6 +110,7 @@ std::string to_text(const AreaReport& report);
 struct LimitedOptions {
   double tolerance = 1e-6;
   bool build_regions = false;
+  certified::LevelSetOptions::Regions regions = certified::LevelSetOptions::Regions::both;  // which (an export: one)
   bool charts = true;  // certified::LevelSetOptions::charts
   int threads = 0;
   /// certified::LevelSetOptions::refine_depth (its default when not given) and retries.
