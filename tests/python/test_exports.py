@@ -287,6 +287,20 @@ def test_certified_enclosures_lie_on_the_right_side_of_the_bounds(tmp_path):
     assert len(done) == len(CERTIFIED)
 
 
+def test_enclosure_whose_holes_touch_its_shell_twice_is_split(tmp_path):
+    # DexTAR (-1, -1), alpha <= 80 deg: next to a base joint, cells touching
+    # at corners leave a hole that touches the inner enclosure's shell at two
+    # vertices, cutting its interior in two (GEOS: "Interior is
+    # disconnected"); the export traces such rings again into two polygons.
+    path = next(p for p in DATASETS if p.stem == "five_bar_dextar_mm_alpha80")
+    out = tmp_path / "inner.geojson"
+    run("export", path, "-f", "geojson", "--bound", "inner", "-o", out)
+    feature = json.loads(out.read_text())["features"][0]
+    gj, props = shape(feature["geometry"]), feature["properties"]
+    check_polygons(gj, "mm_alpha80 inner GeoJSON")
+    assert 0.0 <= props["area_lower"] - gj.area <= 1e-4 * props["area_upper"], (gj.area, props)
+
+
 # ------------------------------------------------------- random designs
 
 def random_moma(rng):
