@@ -43,6 +43,7 @@ void add_levels(CLI::App& app, std::vector<Command>& commands) {
     options.criterion = a->criterion;
     options.levels = parse_levels(a->levels);
     options.tolerance = a->tolerance;
+    options.figure_pieces = !a->svg.empty();
     check_outputs({a->svg, a->csv});
     const CertifiedWork work("levels", a->max_time);
     options.budget = work.budget();

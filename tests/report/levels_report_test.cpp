@@ -8,6 +8,7 @@
 #include <string>
 
 #include "pkmws/io/mechanism_file.hpp"
+#include "pkmws/report/area.hpp"
 #include "pkmws/report/levels.hpp"
 #include "support/fixtures.hpp"
 #include "support/report_fixtures.hpp"
@@ -50,6 +51,48 @@ TEST(ReportLevels, BandsBracketTheCertifiedAreaAndAGrid) {
   EXPECT_NEAR(r.bands[1].area_upper, s2.area_upper - s1.area_lower, 1e-6 * s2.area_upper);
   EXPECT_EQ(r.bands[1].lower_level, 1.5);
   EXPECT_EQ(r.bands[1].upper_level, 2.0);
+}
+
+TEST(ReportLevels, EachLevelIsTheLimitedWorkspaceAreaCertifies) {
+  // DexTAR (+1, -1) at 40 deg: the sub-level set of `levels` is the
+  // criteria-limited workspace `pkmws area` certifies for the file with
+  // that limit (charts included): the same bounds, bit for bit.
+  const io::MechanismFile f = io::load_mechanism(test::dataset("five_bar_dextar_pm"));
+  report::LevelsOptions o;
+  o.criterion = "pressure_angle";
+  o.levels = {20.0, 40.0};
+  const report::LevelsReport r = report::levels(f, o);
+  ASSERT_EQ(r.sublevel_sets.size(), 2u);
+  const io::MechanismFile limited = io::load_mechanism(test::dataset("five_bar_dextar_pm_alpha40"));
+  const auto lw = report::limited_workspace(limited, {});
+  ASSERT_TRUE(lw.charted);
+  EXPECT_EQ(r.sublevel_sets[1].region.area_lower, lw.region.area_lower);
+  EXPECT_EQ(r.sublevel_sets[1].region.area_upper, lw.region.area_upper);
+  EXPECT_LE(r.sublevel_sets[1].region.width(), 1e-6 * lw.region.area_upper);
+  // The traced curves (the charts' mapped to the plane, not the charts'
+  // cuts) lie on their level: the mechanism's own pressure angle there (the
+  // larger of the legs'). Every level curve ends at the base joints
+  // (±0.1375, 0), where the angle is 0/0: the base charts' curves reach them.
+  std::size_t checked = 0;
+  for (std::size_t k = 0; k < 2; ++k) {
+    for (const auto& piece : r.sublevel_sets[k].curves) {
+      for (std::size_t i = 0; i < piece.size(); i += 5) {
+        if (std::abs(std::abs(piece[i].x) - 0.1375) < 1e-12 && std::abs(piece[i].y) < 1e-12) continue;
+        const auto ev = f.model->evaluate({piece[i].x, piece[i].y, 0.0}, f.criteria);
+        ASSERT_FALSE(ev.empty());
+        ASSERT_TRUE(ev.front().reachable) << piece[i].x << ", " << piece[i].y;
+        const double alpha = std::max(ev.front().pressure_angle_deg[0], ev.front().pressure_angle_deg[1]);
+        EXPECT_NEAR(alpha, o.levels[k], 1e-6) << piece[i].x << ", " << piece[i].y;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 1000u);
+  // The band figure has its pieces in (x, y) (the charts give none).
+  o.figure_pieces = true;
+  const report::LevelsReport drawn = report::levels(f, o);
+  EXPECT_EQ(drawn.sublevel_sets[1].region.area_lower, lw.region.area_lower);
+  EXPECT_GT(drawn.sublevel_sets[1].inner_polygons.size(), r.sublevel_sets[1].inner_polygons.size());
 }
 
 TEST(ReportLevels, JsonTextTextCurvesAndFigure) {

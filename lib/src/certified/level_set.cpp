@@ -95,6 +95,7 @@ struct CellTrace {
   std::vector<PLPoint> env_lo, env_hi;  // envelopes of h(u): env_lo <= h <= env_hi
   CurvePiece curve;
   std::uint64_t points = 0;
+  std::size_t constraint = 0;  // the index of the constraint traced
 };
 
 // g' and g'' enclosed over a box [a, b] x [lo, hi] of the graph (a parent
@@ -840,6 +841,7 @@ void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, co
     // curve meets W's boundary to the depth limit.
     if (k.field->domain(cell) == CellState::inside) {
       CellTrace t = try_trace(*k.field, k.level, cell, tau, weight);
+      t.constraint = static_cast<std::size_t>(active);
       if (t.ok) {
         (in_w == CellState::inside ? r.traced : r.traced_across).emplace_back(cell, std::move(t));
         return;
@@ -995,7 +997,10 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
   const auto take_trace = [&](const CellTrace& t) {
     ++result.traced_cells;
     result.curve_points += t.points;
-    if (t.curve.size() >= 2) result.curves.push_back(t.curve);
+    if (t.curve.size() >= 2) {
+      result.curves.push_back(t.curve);
+      result.curve_constraints.push_back(t.constraint);
+    }
   };
   for (std::size_t k = 0; k < per_leaf.size(); ++k) {
     const LeafResult& r = per_leaf[k];

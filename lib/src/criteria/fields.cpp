@@ -281,11 +281,15 @@ certified::LevelSetResult charted_sublevel_set(const std::vector<certified::Cons
     total.undecided_area += r.undecided_area;
     total.traced_width += r.traced_width;
     total.stopped = total.stopped || r.stopped;
-    for (const certified::CurvePiece& piece : r.curves) {
+    for (std::size_t i = 0; i < r.curves.size(); ++i) {
+      // The cuts' curves bound the chart's part inside W: not level curves.
+      if (r.curve_constraints[i] < chart.cuts.size()) continue;
+      const certified::CurvePiece& piece = r.curves[i];
       certified::CurvePiece mapped;
       mapped.reserve(piece.size());
       for (const geometry::Point& p : piece) mapped.push_back(chart.to_plane(p));
       total.curves.push_back(std::move(mapped));
+      total.curve_constraints.push_back(r.curve_constraints[i] - chart.cuts.size());
     }
   }
   return total;
@@ -359,7 +363,13 @@ LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::ve
         charts ? charted_sublevel_set(cs, keys, *charts, o) : certified::sublevel_set(cs, within, within_test, o);
     out.charted = charts.has_value();
     out.region = std::move(r.region);
-    out.curves = std::move(r.curves);
+    // The criteria's level curves (not those of W's cuts, which come first).
+    const std::size_t n_cuts = sets ? sets->cuts.size() : 0;
+    for (std::size_t i = 0; i < r.curves.size(); ++i) {
+      if (r.curve_constraints[i] >= n_cuts) out.curves.push_back(std::move(r.curves[i]));
+    }
+    r.curves.clear();
+    r.curve_constraints.clear();
     out.detail = std::move(r);
   }
   if (min_distance && out.note.empty()) limit_singularity_distance(file, within, *min_distance, options, out);

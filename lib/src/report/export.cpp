@@ -39,6 +39,7 @@ ExportReport bands(const io::MechanismFile& mech, const ExportOptions& options) 
   lo.levels = options.levels;
   lo.tolerance = kLimitedTolerance;
   lo.budget = options.budget;
+  lo.figure_pieces = options.format == io::ExportFormat::svg;
   const LevelsReport run = levels(mech, lo);
   out.content = "bands of " + options.criterion;
   if (run.stopped) {

@@ -130,6 +130,9 @@ struct LevelSetResult {
   /// area(inner) <= area_lower <= area(S) <= area_upper <= area(outer).
   CertifiedRegion region;
   std::vector<CurvePiece> curves;
+  /// For each piece of `curves`, the index of the constraint whose level
+  /// curve it is (with several constraints, a cut's curves are not a criterion's).
+  std::vector<std::size_t> curve_constraints;
   std::uint64_t traced_cells = 0;      // cells where the curve was traced
   std::uint64_t undecided_cells = 0;   // cells left undecided at the depth limit
   std::uint64_t curve_points = 0;      // certified root brackets computed

@@ -142,7 +142,7 @@ std::vector<Limit> file_limits(const mechanisms::Design& file);
 /// Result of a criteria-limited workspace: W ∩ ⋂ {c_k <= t_k}.
 struct LimitedWorkspace {
   certified::CertifiedRegion region;     // inner/outer built when asked
-  std::vector<certified::CurvePiece> curves;
+  std::vector<certified::CurvePiece> curves;  // the criteria's traced level curves (charts' mapped to the plane)
   certified::LevelSetResult detail;      // pieces and statistics (region and curves moved out)
   double time_ms = 0.0;
   /// Parts of W were traced in charts (docs/theory/level_sets.md, "Charts"):

@@ -22,6 +22,10 @@ struct LevelsOptions {
   std::vector<double> levels;
   /// Target bound width relative to each area.
   double tolerance = 1e-6;
+  /// The sub-level sets' pieces in (x, y) for the band figure: where a set
+  /// was traced in charts, the same set traced again in the plane to the
+  /// drawing's accuracy (the numbers stay the charted ones).
+  bool figure_pieces = false;
   /// Deadline and progress per level (stage "level k of n").
   Budget budget;
 };
