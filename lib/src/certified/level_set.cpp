@@ -1044,11 +1044,9 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
     across_outer.clear();
   }
   if (!straddle_inside.empty()) straddle_lower = within.intersect(boxes_region(straddle_inside)).area();
+  // The polygons lie in distinct cells: united by edge cancellation.
   const auto clipped_area = [&](const std::vector<std::vector<Point>>& polygons) {
-    std::vector<Region> parts;
-    parts.reserve(polygons.size());
-    for (const auto& p : polygons) parts.push_back(polygon(p));
-    return parts.empty() ? 0.0 : within.intersect(Region::unite_all(parts)).area();
+    return polygons.empty() ? 0.0 : within.intersect(polygons_region(polygons)).area();
   };
   if (!across_inner.empty() || !across_outer.empty()) {
     const double lo = clipped_area(across_inner), hi = clipped_area(across_outer);
