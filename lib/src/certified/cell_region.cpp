@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 #include <limits>
 #include <tuple>
@@ -11,6 +10,7 @@
 #include <utility>
 
 #include "detail/parallel.hpp"
+#include "geometry/loops.hpp"
 #include "pkmws/geometry/primitives.hpp"
 
 namespace pkmws::certified {
@@ -181,71 +181,24 @@ std::vector<std::vector<std::pair<int, int>>> lattice_loops(const std::vector<st
       if (down && !up) edges.push_back({b, j, a, j});   // top of the union, -x
     }
   }
-  auto key = [](int x, int y) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) << 32) | static_cast<std::uint32_t>(y); };
-  std::unordered_multimap<std::uint64_t, std::size_t> outgoing;
-  outgoing.reserve(edges.size());
-  for (std::size_t e = 0; e < edges.size(); ++e) outgoing.insert({key(edges[e].x0, edges[e].y0), e});
-  auto dir = [](const LatticeEdge& e) {
-    return std::pair<int, int>{(e.x1 > e.x0) - (e.x1 < e.x0), (e.y1 > e.y0) - (e.y1 < e.y0)};
-  };
-  std::vector<bool> used(edges.size(), false);
+  std::vector<std::pair<geometry::Point, geometry::Point>> chain;  // small integers: exact as doubles
+  chain.reserve(edges.size());
+  for (const LatticeEdge& e : edges) {
+    chain.push_back({{static_cast<double>(e.x0), static_cast<double>(e.y0)},
+                     {static_cast<double>(e.x1), static_cast<double>(e.y1)}});
+  }
   std::vector<std::vector<std::pair<int, int>>> loops;
-  for (std::size_t first = 0; first < edges.size(); ++first) {
-    if (used[first]) continue;
-    std::vector<std::pair<int, int>> seq;
-    std::size_t cur = first;
-    used[cur] = true;
-    for (;;) {
-      seq.push_back({edges[cur].x0, edges[cur].y0});
-      const auto [dx, dy] = dir(edges[cur]);
-      // Preference: left turn (-dy, dx), straight, right turn (dy, -dx).
-      const std::pair<int, int> prefs[3] = {{-dy, dx}, {dx, dy}, {dy, -dx}};
-      std::size_t next = edges.size();
-      int best = 4;
-      auto [lo, hi] = outgoing.equal_range(key(edges[cur].x1, edges[cur].y1));
-      for (auto it = lo; it != hi; ++it) {
-        const std::size_t cand = it->second;
-        if (used[cand] && cand != first) continue;
-        const auto d = dir(edges[cand]);
-        for (int p = 0; p < 3; ++p) {
-          if (d == prefs[p] && p < best) { best = p; next = cand; }
-        }
-      }
-      if (next == edges.size() || next == first) break;
-      used[next] = true;
-      cur = next;
+  for (const auto& loop : geometry::left_turn_loops(chain)) {
+    // Drop collinear vertices.
+    std::vector<std::pair<int, int>> out;
+    const std::size_t n = loop.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const LatticeEdge& in = edges[loop[(k + n - 1) % n]];
+      const LatticeEdge& at = edges[loop[k]];
+      const long cross = static_cast<long>(in.x1 - in.x0) * (at.y1 - at.y0) - static_cast<long>(in.y1 - in.y0) * (at.x1 - at.x0);
+      if (cross != 0) out.push_back({at.x0, at.y0});
     }
-    // Split at repeated vertices: each piece is a simple loop.
-    std::vector<std::pair<int, int>> stack;
-    std::unordered_map<std::uint64_t, std::size_t> at;
-    auto emit = [&](std::vector<std::pair<int, int>> loop) {
-      // Drop collinear vertices.
-      std::vector<std::pair<int, int>> out;
-      const std::size_t n = loop.size();
-      for (std::size_t k = 0; k < n; ++k) {
-        const auto& p = loop[(k + n - 1) % n];
-        const auto& v = loop[k];
-        const auto& q = loop[(k + 1) % n];
-        const long cross = static_cast<long>(v.first - p.first) * (q.second - v.second) -
-                           static_cast<long>(v.second - p.second) * (q.first - v.first);
-        if (cross != 0) out.push_back(v);
-      }
-      if (out.size() >= 4) loops.push_back(std::move(out));
-    };
-    for (const auto& v : seq) {
-      const std::uint64_t k = key(v.first, v.second);
-      auto found = at.find(k);
-      if (found != at.end()) {
-        const std::size_t pos = found->second;
-        std::vector<std::pair<int, int>> piece(stack.begin() + static_cast<std::ptrdiff_t>(pos), stack.end());
-        for (std::size_t r = pos; r < stack.size(); ++r) at.erase(key(stack[r].first, stack[r].second));
-        stack.resize(pos);
-        emit(std::move(piece));
-      }
-      at[k] = stack.size();
-      stack.push_back(v);
-    }
-    emit(std::move(stack));
+    if (out.size() >= 4) loops.push_back(std::move(out));
   }
   return loops;
 }
@@ -289,40 +242,13 @@ Region boxes_region(const std::vector<Box>& boxes) {
   return Region::symmetric_difference_all(polygons);
 }
 
-namespace {
-
-// A point as a hash key (-0.0 as 0.0: they are the same vertex).
-struct PointKey {
-  std::size_t operator()(const geometry::Point& p) const {
-    const auto bits = [](double v) {
-      std::uint64_t u = 0;
-      const double z = v == 0.0 ? 0.0 : v;
-      std::memcpy(&u, &z, sizeof u);
-      return u;
-    };
-    return std::hash<std::uint64_t>()(bits(p.x) * 0x9e3779b97f4a7c15ULL ^ bits(p.y));
-  }
-};
-
-// The clockwise angle in (0, 2π] from direction r to direction d.
-double clockwise_angle(geometry::Point r, geometry::Point d) {
-  double t = std::atan2(d.x * r.y - d.y * r.x, d.x * r.x + d.y * r.y);
-  if (t <= 0.0) t += 2.0 * std::acos(-1.0);
-  return t;
-}
-
-}  // namespace
-
 Region polygons_region(const std::vector<std::vector<geometry::Point>>& pieces) {
   using geometry::Point;
-  struct Edge {
-    Point a, b;
-  };
   struct Span {
     double lo, hi;
     int dir;  // +1: the edge runs towards increasing coordinate
   };
-  std::vector<Edge> edges;
+  std::vector<std::pair<Point, Point>> edges;  // the pieces' edges, region on the left
   std::unordered_map<double, std::vector<Span>> rows, columns;  // axis-aligned edges by y / by x
   std::vector<Point> p;
   for (const auto& piece : pieces) {
@@ -375,74 +301,26 @@ Region polygons_region(const std::vector<std::vector<geometry::Point>>& pieces) 
         const double t0 = events[k].first, t1 = events[k + 1].first;
         if (sum == 0 || !(t1 > t0)) continue;
         const Point a = horizontal ? Point{t0, c} : Point{c, t0}, b = horizontal ? Point{t1, c} : Point{c, t1};
-        edges.push_back(sum > 0 ? Edge{a, b} : Edge{b, a});
+        edges.push_back(sum > 0 ? std::pair{a, b} : std::pair{b, a});
       }
     }
   };
   cancel(rows, true);
   cancel(columns, false);
 
-  // Chain the edges into loops: at a vertex with several ways on (where
-  // pieces touch at a point), the sharpest left turn, which keeps each
-  // loop to one side of the touching point.
-  std::unordered_multimap<Point, std::size_t, PointKey> outgoing;
-  outgoing.reserve(edges.size());
-  for (std::size_t e = 0; e < edges.size(); ++e) outgoing.insert({edges[e].a, e});
-  std::vector<bool> used(edges.size(), false);
+  // The loops, each simple; the vertices inside straight axis-aligned runs dropped.
   std::vector<Region> polygons;
-  std::vector<Point> seq, stack;
-  std::unordered_map<Point, std::size_t, PointKey> at;
-  const auto emit = [&](std::vector<Point> loop) {
-    // Drop the vertices inside straight axis-aligned runs.
+  for (const auto& loop : geometry::left_turn_loops(edges)) {
     std::vector<Point> out;
     const std::size_t n = loop.size();
     for (std::size_t k = 0; k < n; ++k) {
-      const Point& a = loop[(k + n - 1) % n];
-      const Point& v = loop[k];
-      const Point& b = loop[(k + 1) % n];
+      const Point& a = edges[loop[(k + n - 1) % n]].first;
+      const Point& v = edges[loop[k]].first;
+      const Point& b = edges[loop[(k + 1) % n]].first;
       if ((a.x == v.x && v.x == b.x) || (a.y == v.y && v.y == b.y)) continue;
       out.push_back(v);
     }
     if (out.size() >= 3) polygons.push_back(geometry::polygon(out));
-  };
-  for (std::size_t first = 0; first < edges.size(); ++first) {
-    if (used[first]) continue;
-    seq.clear();
-    std::size_t cur = first;
-    used[cur] = true;
-    for (;;) {
-      seq.push_back(edges[cur].a);
-      const Point back{edges[cur].a.x - edges[cur].b.x, edges[cur].a.y - edges[cur].b.y};
-      std::size_t next = edges.size();
-      double best = 0.0;
-      auto [lo, hi] = outgoing.equal_range(edges[cur].b);
-      for (auto it = lo; it != hi; ++it) {
-        const std::size_t cand = it->second;
-        if (used[cand] && cand != first) continue;
-        const Point d{edges[cand].b.x - edges[cand].a.x, edges[cand].b.y - edges[cand].a.y};
-        const double angle = clockwise_angle(back, d);
-        if (next == edges.size() || angle < best) { best = angle; next = cand; }
-      }
-      if (next == edges.size() || next == first) break;
-      used[next] = true;
-      cur = next;
-    }
-    // Split at repeated vertices: each piece is a simple loop.
-    stack.clear();
-    at.clear();
-    for (const Point& v : seq) {
-      auto found = at.find(v);
-      if (found != at.end()) {
-        const std::size_t pos = found->second;
-        std::vector<Point> piece(stack.begin() + static_cast<std::ptrdiff_t>(pos), stack.end());
-        for (std::size_t r = pos; r < stack.size(); ++r) at.erase(stack[r]);
-        stack.resize(pos);
-        emit(std::move(piece));
-      }
-      at[v] = stack.size();
-      stack.push_back(v);
-    }
-    emit(stack);
   }
   if (polygons.empty()) return Region{};
   if (polygons.size() == 1) return polygons.front();

@@ -4,6 +4,7 @@
 //
 // All lengths are in the mechanism file's unit, angles in the file formats'
 // own convention (SVG: flags, DXF: degrees ccw, CSV: degrees signed).
+#include "geometry/loops.hpp"
 #include "io/text.hpp"
 #include "pkmws/geometry/polyline.hpp"
 #include "pkmws/io/export.hpp"
@@ -468,72 +469,27 @@ struct IPolygon {
 // ways on the sharpest left turn keeps to one piece of the interior; each
 // loop is then split at repeated vertices. Rings that meet nowhere stay.
 void retrace(std::vector<IRing>& rings) {
-  struct REdge {
-    Point a, b;
-    std::size_t curve;
-  };
-  std::vector<REdge> edges;
-  std::map<std::pair<double, double>, std::vector<std::size_t>> outgoing;
+  std::vector<std::pair<Point, Point>> edges;
+  std::vector<std::size_t> curve;  // per edge
+  std::map<std::pair<double, double>, int> starts;
+  bool meet = false;
   for (const IRing& r : rings) {
     for (std::size_t i = 0; i < r.pts.size(); ++i) {
-      outgoing[{r.pts[i].x, r.pts[i].y}].push_back(edges.size());
-      edges.push_back({r.pts[i], r.pts[(i + 1) % r.pts.size()], r.curve[i]});
+      meet = meet || ++starts[{r.pts[i].x, r.pts[i].y}] > 1;
+      edges.push_back({r.pts[i], r.pts[(i + 1) % r.pts.size()]});
+      curve.push_back(r.curve[i]);
     }
   }
-  const bool meet = std::any_of(outgoing.begin(), outgoing.end(), [](const auto& kv) { return kv.second.size() > 1; });
   if (!meet) return;
-  // Clockwise angle in (0, 2π] from direction r to direction d.
-  const auto clockwise = [](Point r, Point d) {
-    double t = std::atan2(d.x * r.y - d.y * r.x, d.x * r.x + d.y * r.y);
-    if (t <= 0.0) t += 2.0 * std::numbers::pi;
-    return t;
-  };
-  std::vector<char> used(edges.size(), 0);
   std::vector<IRing> out;
-  for (std::size_t first = 0; first < edges.size(); ++first) {
-    if (used[first]) continue;
-    std::vector<std::size_t> seq;
-    std::size_t cur = first;
-    used[cur] = 1;
-    for (;;) {
-      seq.push_back(cur);
-      const Point back = edges[cur].a - edges[cur].b;
-      std::size_t next = edges.size();
-      double best = 0.0;
-      for (const std::size_t cand : outgoing[{edges[cur].b.x, edges[cur].b.y}]) {
-        if (used[cand] && cand != first) continue;
-        const double angle = clockwise(back, edges[cand].b - edges[cand].a);
-        if (next == edges.size() || angle < best) { best = angle; next = cand; }
-      }
-      if (next == edges.size() || next == first) break;
-      used[next] = 1;
-      cur = next;
+  for (const auto& loop : geometry::left_turn_loops(edges)) {
+    IRing r;
+    for (const std::size_t e : loop) {
+      r.pts.push_back(edges[e].first);
+      r.curve.push_back(curve[e]);
     }
-    // Split at repeated vertices.
-    std::map<std::pair<double, double>, std::size_t> seen;
-    std::vector<std::size_t> stack;
-    const auto emit = [&](std::size_t from) {
-      IRing r;
-      for (std::size_t k = from; k < stack.size(); ++k) {
-        r.pts.push_back(edges[stack[k]].a);
-        r.curve.push_back(edges[stack[k]].curve);
-      }
-      r.area = ring_area(r.pts);
-      if (r.pts.size() >= 3 && r.area != 0.0) out.push_back(std::move(r));
-    };
-    for (const std::size_t e : seq) {
-      const auto key = std::make_pair(edges[e].a.x, edges[e].a.y);
-      const auto it = seen.find(key);
-      if (it != seen.end()) {
-        const std::size_t j = it->second;
-        emit(j);
-        for (std::size_t k = j; k < stack.size(); ++k) seen.erase({edges[stack[k]].a.x, edges[stack[k]].a.y});
-        stack.resize(j);
-      }
-      seen.emplace(key, stack.size());
-      stack.push_back(e);
-    }
-    emit(0);
+    r.area = ring_area(r.pts);
+    if (r.pts.size() >= 3 && r.area != 0.0) out.push_back(std::move(r));
   }
   rings.swap(out);
 }
