@@ -258,10 +258,9 @@ Region polygons_region(const std::vector<std::vector<geometry::Point>>& pieces) 
     }
     while (p.size() > 1 && p.front() == p.back()) p.pop_back();
     if (p.size() < 3) continue;
-    double twice_area = 0.0;
-    for (std::size_t k = 0; k < p.size(); ++k) {
-      const Point& a = p[k];
-      const Point& b = p[(k + 1) % p.size()];
+    double twice_area = 0.0;  // about the first vertex: no cancellation of large coordinates
+    for (std::size_t k = 1; k + 1 < p.size(); ++k) {
+      const Point a = p[k] - p[0], b = p[k + 1] - p[0];
       twice_area += a.x * b.y - a.y * b.x;
     }
     if (twice_area == 0.0) continue;
