@@ -257,20 +257,25 @@ TEST(CertifiedRegion, PolygonsRegionUnitesPiecesOfCells) {
   EXPECT_NEAR(t.area(), 1.0 + 2.0 + 4.0 + 2.0, 1e-14);
   EXPECT_FALSE(t.contains({0.2, 0.8}));
   EXPECT_TRUE(t.contains({1.0, 0.5}));
+}
 
-  // Random quadtrees: each leaf empty, whole, or the part of it under (or
-  // over) a random piecewise-linear function with jumps, clamped to the cell
-  // (as a traced cell gives). Against CGAL's union of the same polygons and
-  // the sum of their areas (the pieces' interiors are disjoint).
+// Random quadtrees (leaves split while wider than `min_width`, in a window
+// 3.4 wide): each leaf empty, whole, or the part of it under (or over) a
+// random piecewise-linear function with jumps, clamped to the cell (as a
+// traced cell gives). Against CGAL's union of the same polygons and the sum
+// of their areas (the pieces' interiors are disjoint).
+void check_random_quadtrees(int trials, double min_width) {
+  using pkmws::certified::polygons_region;
+  using pkmws::geometry::Region;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  for (int trial = 0; trial < 12; ++trial) {
+  for (int trial = 0; trial < trials; ++trial) {
     std::vector<Box> leaves;
     std::vector<Box> todo{box(-1.3, 0.2, 2.1, 3.6)};
     while (!todo.empty()) {
       const Box b = todo.back();
       todo.pop_back();
-      if (b.width() > 0.1 && unit(rng) < 0.7) {
+      if (b.width() > min_width && unit(rng) < 0.7) {
         const double xm = 0.5 * (b.min.x + b.max.x), ym = 0.5 * (b.min.y + b.max.y);
         todo.push_back(box(b.min.x, b.min.y, xm, ym));
         todo.push_back(box(xm, b.min.y, b.max.x, ym));
@@ -341,5 +346,12 @@ TEST(CertifiedRegion, PolygonsRegionUnitesPiecesOfCells) {
     EXPECT_NEAR(mine.symmetric_difference(cgal).area(), 0.0, 1e-12) << trial;
   }
 }
+
+// Small trees (a few dozen pieces: also under the sanitizers).
+TEST(CertifiedRegion, PolygonsRegionAgainstCgalOnSmallRandomQuadtrees) { check_random_quadtrees(3, 0.8); }
+
+// Trees of hundreds of pieces (heavy: CGAL's reference union takes minutes
+// under AddressSanitizer).
+TEST(CertifiedRegion, PolygonsRegionAgainstCgalOnRandomQuadtrees) { check_random_quadtrees(12, 0.1); }
 
 }  // namespace
