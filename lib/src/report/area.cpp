@@ -10,6 +10,7 @@
 
 #include "pkmws/io/export.hpp"
 #include "pkmws/pkmws.hpp"
+#include "report/figure_pieces.hpp"
 #include "report/json.hpp"
 #include "report/text.hpp"
 
@@ -59,6 +60,19 @@ void region_report(AreaReport& out, const geometry::Region& region, double min_a
   out.boundary_curves = region.curve_count();
 }
 
+// The level sets' options of a limited workspace (without the budget).
+certified::LevelSetOptions level_set_options(const LimitedOptions& options) {
+  certified::LevelSetOptions o;
+  o.relative_tolerance = options.tolerance;
+  o.build_regions = options.build_regions;
+  o.regions = options.regions;
+  o.charts = options.charts;
+  o.threads = options.threads;
+  if (options.refine_depth) o.refine_depth = *options.refine_depth;
+  o.retries = options.retries;
+  return o;
+}
+
 // For a file with `criteria` limits: certified area bounds of the limited
 // workspace (docs/theory/level_sets.md).
 void criteria_area_report(AreaReport& out, const io::MechanismFile& mech, const AreaOptions& options) {
@@ -67,22 +81,7 @@ void criteria_area_report(AreaReport& out, const io::MechanismFile& mech, const 
   o.budget = options.budget;
   criteria::LimitedWorkspace lw = limited_workspace(mech, o);
   if (options.figure_pieces && lw.charted && !lw.detail.stopped) {
-    // The figure draws pieces in (x, y), which the charts' parts do not give:
-    // the same set traced in (x, y) alone, to the drawing's accuracy, gives
-    // them; the numbers stay the charted ones. One pass, cells refined 3
-    // levels below the cover's (1/8 of a leaf, 0.2 mm for the DexTAR: under
-    // a pixel), curves traced to 1e-4 of the area: the cells a figure does
-    // not resolve are not refined (DexTAR α ≤ 80°: 0.60 s instead of 1.64 s;
-    // the inner bound drawn within 6.5e-4 of the area).
-    LimitedOptions p = o;
-    p.charts = false;
-    p.tolerance = std::max(o.tolerance, 1e-4);
-    p.refine_depth = 3;
-    p.retries = false;
-    criteria::LimitedWorkspace plane = limited_workspace(mech, p);
-    lw.detail.inside_boxes = std::move(plane.detail.inside_boxes);
-    lw.detail.inner_polygons = std::move(plane.detail.inner_polygons);
-    lw.detail.undecided_boxes = std::move(plane.detail.undecided_boxes);
+    plane_figure_pieces(mech, criteria::file_limits(mech), o.budget.apply(level_set_options(o)), lw.detail);
   }
   out.method = "certified";
   out.area = lw.region.area_estimate();
@@ -190,19 +189,24 @@ std::string pair_label(const std::string& a, const std::string& b, const std::st
   return kind == "link_angle" ? a + " ∠ " + b : a + " / " + b;
 }
 
+void plane_figure_pieces(const mechanisms::Design& file, const std::vector<criteria::Limit>& limits,
+                         certified::LevelSetOptions o, certified::LevelSetResult& detail) {
+  o.charts = false;
+  o.relative_tolerance = std::max(o.relative_tolerance, 1e-4);
+  o.refine_depth = 3;
+  o.retries = false;
+  criteria::LimitedWorkspace plane = criteria::limited_workspace(file, limits, o);
+  detail.inside_boxes = std::move(plane.detail.inside_boxes);
+  detail.inner_polygons = std::move(plane.detail.inner_polygons);
+  detail.undecided_boxes = std::move(plane.detail.undecided_boxes);
+}
+
 criteria::LimitedWorkspace limited_workspace(const io::MechanismFile& file, const LimitedOptions& options) {
   if (!(options.tolerance > 0.0 && options.tolerance < 1.0)) throw io::InputError("tolerance: must be in (0, 1)");
   if (!file.criteria.any()) throw io::InputError(file.path + ": the file has no criteria limits");
-  certified::LevelSetOptions o;
-  o.relative_tolerance = options.tolerance;
-  o.build_regions = options.build_regions;
-  o.regions = options.regions;
-  o.charts = options.charts;
-  o.threads = options.threads;
-  if (options.refine_depth) o.refine_depth = *options.refine_depth;
-  o.retries = options.retries;
-  return criteria::limited_workspace(file, criteria::file_limits(file), options.budget.apply(o));
+  return criteria::limited_workspace(file, criteria::file_limits(file), options.budget.apply(level_set_options(options)));
 }
+
 
 bodies::RealWorkspace real_workspace(const io::MechanismFile& file, const geometry::Region& reachable, int depth) {
   bodies::InterferenceOptions options;

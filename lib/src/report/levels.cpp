@@ -11,6 +11,7 @@
 
 #include "pkmws/io/export.hpp"
 #include "pkmws/io/figure.hpp"
+#include "report/figure_pieces.hpp"
 #include "report/json.hpp"
 #include "report/text.hpp"
 
@@ -97,17 +98,7 @@ LevelsReport levels(const io::MechanismFile& mech, const LevelsOptions& options)
     r.region = std::move(lw.region);
     r.curves = std::move(lw.curves);
     if (options.figure_pieces && lw.charted && !r.stopped) {
-      // As the area figure's (report::area): one pass in (x, y), cells 3
-      // levels below the cover's, curves to 1e-4 of the area.
-      certified::LevelSetOptions p = o;
-      p.charts = false;
-      p.relative_tolerance = std::max(o.relative_tolerance, 1e-4);
-      p.refine_depth = 3;
-      p.retries = false;
-      criteria::LimitedWorkspace plane = criteria::limited_workspace(mech, limit, options.budget.apply(p, stage));
-      r.inside_boxes = std::move(plane.detail.inside_boxes);
-      r.inner_polygons = std::move(plane.detail.inner_polygons);
-      r.undecided_boxes = std::move(plane.detail.undecided_boxes);
+      plane_figure_pieces(mech, limit, options.budget.apply(o, stage), r);
     }
     run.stopped = run.stopped || r.stopped;
     run.sublevel_sets.push_back(std::move(r));
