@@ -36,6 +36,7 @@ void check_field(const Field& f, geometry::Point p, double h, const geometry::Bo
   EXPECT_DOUBLE_EQ(g.dy, j.dy);
   // Enclosures over the box contain the values, gradients and Hessians at sample points.
   const auto e = f.enclose(box);
+  const auto cheap = f.enclose_cheap(box);
   const auto jb = f.jet(box);
   const auto gb = f.grad(box);
   for (int a = 0; a <= 4; ++a) {
@@ -43,6 +44,8 @@ void check_field(const Field& f, geometry::Point p, double h, const geometry::Bo
       const geometry::Point q{box.min.x + box.width() * a / 4.0, box.min.y + box.height() * b / 4.0};
       const auto jq = f.jet(q);
       EXPECT_TRUE(e.contains(jq.v));
+      EXPECT_TRUE(cheap.contains(jq.v));
+      EXPECT_TRUE(f.enclose(geometry::Box{q, q}).contains(jq.v));
       EXPECT_TRUE(jb.v.contains(jq.v));
       EXPECT_TRUE(jb.dx.contains(jq.dx) && jb.dy.contains(jq.dy));
       EXPECT_TRUE(gb.dx.contains(jq.dx) && gb.dy.contains(jq.dy));

@@ -33,9 +33,12 @@ double target_width(const LevelSetOptions& options, double area) {
   return std::max(options.relative_tolerance * area, options.absolute_tolerance);
 }
 
-// Value enclosure of F over a box: natural form, intersected with the centred
-// (mean-value) form when the box lies in F's smooth domain.
+// Value enclosure of F over a box: F's cheap form if that decides, else its
+// natural form, intersected with the centred (mean-value) form when the box
+// lies in F's smooth domain.
 Interval enclose_value(const ScalarField& f, const Box& box, double level) {
+  const Interval cheap = f.enclose_cheap(box);
+  if (cheap.hi <= level || cheap.lo > level) return cheap;
   Interval v = f.enclose(box);
   if (v.hi <= level || v.lo > level) return v;  // decided by the natural form
   // The centred form needs F smooth over the box: its domain test, asked

@@ -193,11 +193,17 @@ inline certified::Interval cubic_root(Root which, const Cubic<certified::Interva
 // to second order in the box size.
 template <class S>
 certified::Jet<S> root_jet(const Cubic<certified::Jet<S>>& c, const S& l, const Cubic<S>& v);
+template <class S>
+certified::Grad<S> root_jet(const Cubic<certified::Grad<S>>& c, const S& l, const Cubic<S>& v);
 
 struct BoxRoot {
   certified::Interval largest, smallest;  // λ_1, λ_3 (smallest only when asked)
   Cubic<certified::Interval> coefficients;
   Cubic<certified::Interval> dx, dy;  // the coefficients' first derivatives over the box
+  // Over a box (not a point): the coefficients' jets there, values and first
+  // derivatives as above (the field's jet over the box reuses them).
+  Cubic<certified::Jet<certified::Interval>> jets;
+  bool has_jets = false;
   const certified::Interval& operator[](Root which) const { return which == Root::largest ? largest : smallest; }
 };
 inline certified::Interval tighter(const certified::Interval& a, const certified::Interval& b) {
@@ -211,9 +217,10 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
   using certified::Interval;
   using certified::sqr;
   using J = certified::Jet<Interval>;
+  using G = certified::Grad<Interval>;
   BoxRoot out;
   if (x.width() == 0.0 && y.width() == 0.0) {
-    const Cubic<J> m = cubic_of(J::variable_x(x), J::variable_y(y));
+    const Cubic<G> m = cubic_of(G::variable_x(x), G::variable_y(y));
     out.coefficients = {m.c2.v, m.c1.v, m.c0.v};
     out.dx = {m.c2.dx, m.c1.dx, m.c0.dx};
     out.dy = {m.c2.dy, m.c1.dy, m.c0.dy};
@@ -224,16 +231,17 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
   const double xm = x.mid(), ym = y.mid();
   const Interval dx = x - Interval(xm), dy = y - Interval(ym);
   const Interval dx2 = sqr(dx), dxy = dx * dy, dy2 = sqr(dy);
-  const Cubic<J> m = cubic_of(J::variable_x(Interval(xm)), J::variable_y(Interval(ym)));
+  // At m only the value and the gradient are used: a gradient is a third of a jet.
+  const Cubic<G> m = cubic_of(G::variable_x(Interval(xm)), G::variable_y(Interval(ym)));
   const Cubic<J> b = cubic_of(J::variable_x(x), J::variable_y(y));
-  const auto value = [&](const J& at_m, const J& over) {
+  const auto value = [&](const G& at_m, const J& over) {
     return tighter(over.v, at_m.v + at_m.dx * dx + at_m.dy * dy +
                                0.5 * (over.dxx * dx2 + 2.0 * over.dxy * dxy + over.dyy * dy2));
   };
-  const auto slope_x = [&](const J& at_m, const J& over) {
+  const auto slope_x = [&](const G& at_m, const J& over) {
     return tighter(over.dx, at_m.dx + over.dxx * dx + over.dxy * dy);
   };
-  const auto slope_y = [&](const J& at_m, const J& over) {
+  const auto slope_y = [&](const G& at_m, const J& over) {
     return tighter(over.dy, at_m.dy + over.dxy * dx + over.dyy * dy);
   };
   out.coefficients = {value(m.c2, b.c2), value(m.c1, b.c1), value(m.c0, b.c0)};
@@ -248,11 +256,13 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
     c->dx = gx;
     c->dy = gy;
   }
+  out.jets = bt;
+  out.has_jets = true;
   const auto root = [&](Root which) {
     const Interval l0 = cubic_root(which, out.coefficients);
     if (cubic_slope(out.coefficients, l0).contains_zero()) return l0;
-    // λ and its derivatives at m (thin coefficients), and its Hessian over B.
-    const J lm = root_jet(m, cubic_root(which, vm), vm);
+    // λ and its gradient at m (thin coefficients), and its Hessian over B.
+    const G lm = root_jet(m, cubic_root(which, vm), vm);
     const J lb = root_jet(bt, l0, out.coefficients);
     return tighter(l0, lm.v + lm.dx * dx + lm.dy * dy + 0.5 * (lb.dxx * dx2 + 2.0 * lb.dxy * dxy + lb.dyy * dy2));
   };
@@ -264,8 +274,8 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
 // The parameters that fix a field's cubic (its mechanism's, filled in by the
 // field; unused entries 0): with the box, the key of a one-entry cache per
 // thread. A cell's tests ask for the same box's roots up to four times (its
-// value, its smooth domain, its gradient and its jet), each costing two jets of
-// the cubic's coefficients.
+// value, its smooth domain, its gradient and its jet), each costing a jet and a
+// gradient of the cubic's coefficients.
 using CubicKey = std::array<double, 32>;
 struct RootCacheEntry {
   bool valid = false, smallest = false;
@@ -340,6 +350,59 @@ template <class T> Cubic<decltype(value_part(std::declval<T>()))> values(const C
   return {value_part(c.c2), value_part(c.c1), value_part(c.c0)};
 }
 
+// λ over a box in first-order (mean-value) forms: the coefficients
+//   c(B) ⊆ c(m) + ∇c(B)·d
+// (c(m) in plain intervals, ∇c(B) in gradients over B), their root Λ₀, then
+//   λ(B) ⊆ λ(m) + ∇λ(B)·d
+// with ∇λ(B) by implicit differentiation over B with Λ₀ (the mean value
+// theorem along the segment from m, valid where p_μ(Λ₀) excludes 0). Wider
+// than root_over_box by about its second-order terms, but without its jet (a
+// fifth of the products): the cell tests try it first
+// (ScalarField::enclose_cheap; it decides about a third of the PAMINSA κ
+// cells' tests).
+template <class F>
+std::pair<certified::Interval, certified::Interval> roots_first_order(const F& cubic_of, const certified::Interval& x,
+                                                                      const certified::Interval& y, bool smallest) {
+  using certified::Interval;
+  using G = certified::Grad<Interval>;
+  const double xm = x.mid(), ym = y.mid();
+  const Interval dx = x - Interval(xm), dy = y - Interval(ym);
+  const Cubic<Interval> vm = cubic_of(Interval(xm), Interval(ym));
+  Cubic<G> b = cubic_of(G::variable_x(x), G::variable_y(y));
+  for (auto [over, at_m] : {std::pair{&b.c2, vm.c2}, std::pair{&b.c1, vm.c1}, std::pair{&b.c0, vm.c0}}) {
+    over->v = tighter(over->v, at_m + over->dx * dx + over->dy * dy);
+  }
+  const Cubic<Interval> c = values(b);
+  const auto root = [&](Root which) {
+    const Interval l0 = cubic_root(which, c);
+    if (cubic_slope(c, l0).contains_zero()) return l0;
+    const G lb = root_jet(b, l0, c);
+    return tighter(l0, cubic_root(which, vm) + lb.dx * dx + lb.dy * dy);
+  };
+  return {root(Root::largest), smallest ? root(Root::smallest) : Interval(0.0)};
+}
+
+// The conditioning fields' value over a box in the first-order forms
+// (ScalarField::enclose_cheap): λ_1 (`ratio` false), or -λ_3 / λ_1 (`ratio`:
+// -1/κ²), for a model with `jacobian_cubic(x, y)`.
+template <class Model>
+certified::Interval conditioning_first_order(const Model& model, double x0, double y0, double x1, double y1, bool ratio) {
+  const auto cubic = [&model](const auto& u, const auto& v) { return model.jacobian_cubic(u, v); };
+  const auto [l1, l3] = roots_first_order(cubic, certified::Interval(x0, x1), certified::Interval(y0, y1), ratio);
+  return ratio ? -(l3 / l1) : l1;
+}
+
+// Whether x and y (gradients or jets over a box) are the plane's coordinates
+// themselves: derivatives 1 and 0.
+inline bool exactly(const certified::Interval& a, double v) { return a.lo == v && a.hi == v; }
+template <class T> bool plain_coordinates(const T& x, const T& y) {
+  bool plain = exactly(x.dx, 1.0) && exactly(x.dy, 0.0) && exactly(y.dx, 0.0) && exactly(y.dy, 1.0);
+  if constexpr (requires { x.dxx; }) {
+    for (const certified::Interval* d : {&x.dxx, &x.dxy, &x.dyy, &y.dxx, &y.dxy, &y.dyy}) plain = plain && exactly(*d, 0.0);
+  }
+  return plain;
+}
+
 // The largest root λ_1 and (when `smallest`) the smallest λ_3 of the cubic
 // `cubic_of(x, y)` in arithmetic T (double, Interval, Grad<.>, Jet<.>): over a
 // box (interval arithmetics) by root_over_box, with derivatives by implicit
@@ -348,16 +411,40 @@ template <class T, class F>
 std::pair<T, T> cubic_roots_field(const F& cubic_of, const T& x, const T& y, bool smallest, const CubicKey* key = nullptr) {
   using S = decltype(value_part(std::declval<T>()));
   std::pair<T, T> out{T(0.0), T(0.0)};
+  if constexpr (std::is_same_v<T, certified::Interval>) {
+    if (x.width() == 0.0 && y.width() == 0.0) {
+      // At a point the value needs no derivatives: plain intervals.
+      const Cubic<T> c = cubic_of(x, y);
+      return {cubic_root(Root::largest, c), smallest ? cubic_root(Root::smallest, c) : T(0.0)};
+    }
+  }
   if constexpr (std::is_same_v<S, certified::Interval>) {
     const BoxRoot b = root_over_box_cached(key, cubic_of, value_part(x), value_part(y), smallest);
     if constexpr (std::is_same_v<T, S>) {
       out = {b.largest, b.smallest};
     } else {
-      Cubic<T> c = cubic_of(x, y);
-      for (auto [mine, gx, gy] : {std::tuple{&c.c2, b.dx.c2, b.dy.c2}, std::tuple{&c.c1, b.dx.c1, b.dy.c1},
-                                  std::tuple{&c.c0, b.dx.c0, b.dy.c0}}) {
-        mine->dx = tighter(mine->dx, gx);
-        mine->dy = tighter(mine->dy, gy);
+      // The coefficients' derivatives: root_over_box's own when x and y are
+      // the plane's coordinates (no second evaluation), else evaluated here
+      // and tightened by them.
+      Cubic<T> c;
+      bool reused = false;
+      if (plain_coordinates(x, y)) {
+        if constexpr (std::is_same_v<T, certified::Grad<S>>) {
+          c = {{b.coefficients.c2, b.dx.c2, b.dy.c2}, {b.coefficients.c1, b.dx.c1, b.dy.c1},
+               {b.coefficients.c0, b.dx.c0, b.dy.c0}};
+          reused = true;
+        } else if (b.has_jets) {
+          c = b.jets;
+          reused = true;
+        }
+      }
+      if (!reused) {
+        c = cubic_of(x, y);
+        for (auto [mine, gx, gy] : {std::tuple{&c.c2, b.dx.c2, b.dy.c2}, std::tuple{&c.c1, b.dx.c1, b.dy.c1},
+                                    std::tuple{&c.c0, b.dx.c0, b.dy.c0}}) {
+          mine->dx = tighter(mine->dx, gx);
+          mine->dy = tighter(mine->dy, gy);
+        }
       }
       out.first = root_jet(c, b.largest, b.coefficients);
       if (smallest) out.second = root_jet(c, b.smallest, b.coefficients);

@@ -44,6 +44,10 @@ class ScalarField {
   virtual Grad<Interval> grad(const geometry::Box& box) const = 0;
   /// Encloses F over box ∩ domain (also for degenerate boxes: points, edges).
   virtual Interval enclose(const geometry::Box& box) const = 0;
+  /// A cheaper enclosure of F over the box than enclose(), possibly wider: the
+  /// cell tests try it first and call enclose() only where it decides
+  /// nothing. Default: none (the whole line).
+  virtual Interval enclose_cheap(const geometry::Box& /*box*/) const { return Interval::whole(); }
   /// Encloses F and its derivatives over the box; meaningful only for boxes
   /// the domain test calls `inside` (F is C² there).
   virtual Jet<Interval> jet(const geometry::Box& box) const = 0;

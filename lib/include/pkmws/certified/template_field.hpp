@@ -3,7 +3,8 @@
 // for T = double, Interval, Grad<double>, Grad<Interval>, Jet<double>,
 // Jet<Interval> (use only +, -, *, /, sqr, sqrt, abs, max(., double) on T),
 // plus `CellState domain(const Box&) const` (where the field is C²) and
-// optionally `bool excluded(const Box&) const` (ScalarField::excluded).
+// optionally `bool excluded(const Box&) const` (ScalarField::excluded) and
+// `Interval enclose_cheap(const Box&) const` (ScalarField::enclose_cheap).
 #pragma once
 
 #include <utility>
@@ -29,6 +30,14 @@ class TemplateField final : public ScalarField {
   }
   Interval enclose(const geometry::Box& b) const override {
     return impl_.template eval<Interval>(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y));
+  }
+  /// `Interval enclose_cheap(const Box&) const` of Impl when it has one (see ScalarField).
+  Interval enclose_cheap(const geometry::Box& b) const override {
+    if constexpr (requires { impl_.enclose_cheap(b); }) {
+      return impl_.enclose_cheap(b);
+    } else {
+      return Interval::whole();
+    }
   }
   Jet<Interval> jet(const geometry::Box& b) const override {
     using J = Jet<Interval>;

@@ -141,6 +141,12 @@ struct ThreeRprTwist {
     }
     return sqrt(p.rho2) * num / abs(p.det);
   }
+  // ScalarField::enclose_cheap: the conditioning fields' first-order forms
+  // (criteria/singular3.hpp); the others' natural enclosure is cheap already.
+  Interval enclose_cheap(const Box& b) const {
+    if (what < 3) return Interval::whole();
+    return detail::conditioning_first_order(*this, b.min.x, b.min.y, b.max.x, b.max.y, what == 4);
+  }
   // ScalarField::excluded: the conditioning fields are defined everywhere but
   // at the base joints (points), so only their smoothness test (the roots'
   // enclosures) can say anything, and it never says `outside`.
