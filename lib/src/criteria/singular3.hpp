@@ -181,6 +181,38 @@ inline certified::Interval cubic_root(Root which, const Cubic<certified::Interva
   return lo <= hi ? Interval(lo, hi) : Interval(0.0, std::max(0.0, c.c2.hi));
 }
 
+// p'(λ) over a box, λ ∈ l the root `which` of every cubic with coefficients
+// in c: the natural form, raised by a lower bound from the factorisations
+//   p'(λ_1) = (λ_1 - λ_2)(λ_1 - λ_3),  p'(λ_3) = (λ_1 - λ_3)(λ_2 - λ_3)
+// and a point that separates the roots (the natural form loses them to
+// cancellation: terms of size c_2² for a product that may be far smaller):
+//  * λ_1: s < l.lo with p(s) < 0 and s above λ_3's proved upper end u_3 lies
+//    between λ_2 and λ_1, so p'(λ_1) >= (l.lo - s)(l.lo - u_3);
+//  * λ_3: t > l.hi with p(t) > 0 and t below λ_1's proved lower end l_1 lies
+//    between λ_3 and λ_2, so p'(λ_3) >= (l_1 - l.hi)(t - l.hi).
+inline certified::Interval root_slope(Root which, const Cubic<certified::Interval>& c, const certified::Interval& l) {
+  using certified::Interval;
+  const Interval natural = cubic_slope(c, l);
+  if (natural.lo > 0.0 || !l.finite() || !c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return natural;
+  const bool largest = which == Root::largest;
+  // The other root's proved end, and the gap to this root's end.
+  const double other = largest ? root_end(Root::smallest, true, c, root_start(Root::smallest, c))
+                               : root_end(Root::largest, false, c, root_start(Root::largest, c));
+  const double end = largest ? l.lo : l.hi;
+  if (!(largest ? other < end : end < other)) return natural;
+  for (const double f : {0.5, 0.125, 1.0 / 32.0}) {
+    const double at = end + (other - end) * f;  // between the two ends
+    const Interval pa = cubic_value(c, Interval(at));
+    if (largest ? pa.hi < 0.0 : pa.lo > 0.0) {
+      const Interval gap_other = largest ? Interval(end) - Interval(other) : Interval(other) - Interval(end);
+      const Interval gap_point = largest ? Interval(end) - Interval(at) : Interval(at) - Interval(end);
+      const double bound = (gap_other * gap_point).lo;
+      return bound > natural.lo ? Interval(bound, std::max(bound, natural.hi)) : natural;
+    }
+  }
+  return natural;
+}
+
 // λ over a box with its coefficients there, in second-order centred forms
 // (m the box's centre, d = B - m): each coefficient and its first derivatives
 //   c(B) ⊆ c(m) + ∇c(m)·d + ½ dᵀ H_c(B) d,   ∇c(B) ⊆ ∇c(m) + H_c(B) d,
@@ -191,15 +223,17 @@ inline certified::Interval cubic_root(Root which, const Cubic<certified::Interva
 // smooth over the box). Naive interval arithmetic on the coefficients
 // (rational in P, many terms) loses their correlations; these forms are tight
 // to second order in the box size.
+// (root_jet: pm = p'(λ), enclosed as root_slope does over a box.)
 template <class S>
-certified::Jet<S> root_jet(const Cubic<certified::Jet<S>>& c, const S& l, const Cubic<S>& v);
+certified::Jet<S> root_jet(const Cubic<certified::Jet<S>>& c, const S& l, const Cubic<S>& v, const S& pm);
 template <class S>
-certified::Grad<S> root_jet(const Cubic<certified::Grad<S>>& c, const S& l, const Cubic<S>& v);
+certified::Grad<S> root_jet(const Cubic<certified::Grad<S>>& c, const S& l, const Cubic<S>& v, const S& pm);
 
 struct BoxRoot {
   certified::Interval largest, smallest;  // λ_1, λ_3 (smallest only when asked)
   Cubic<certified::Interval> coefficients;
   Cubic<certified::Interval> dx, dy;  // the coefficients' first derivatives over the box
+  certified::Interval slope_largest, slope_smallest;  // p'(λ_1), p'(λ_3) (root_slope)
   // Over a box (not a point): the coefficients' jets there, values and first
   // derivatives as above (the field's jet over the box reuses them).
   Cubic<certified::Jet<certified::Interval>> jets;
@@ -225,7 +259,11 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
     out.dx = {m.c2.dx, m.c1.dx, m.c0.dx};
     out.dy = {m.c2.dy, m.c1.dy, m.c0.dy};
     out.largest = cubic_root(Root::largest, out.coefficients);
-    if (smallest) out.smallest = cubic_root(Root::smallest, out.coefficients);
+    out.slope_largest = root_slope(Root::largest, out.coefficients, out.largest);
+    if (smallest) {
+      out.smallest = cubic_root(Root::smallest, out.coefficients);
+      out.slope_smallest = root_slope(Root::smallest, out.coefficients, out.smallest);
+    }
     return out;
   }
   const double xm = x.mid(), ym = y.mid();
@@ -260,14 +298,20 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
   out.has_jets = true;
   const auto root = [&](Root which) {
     const Interval l0 = cubic_root(which, out.coefficients);
-    if (cubic_slope(out.coefficients, l0).contains_zero()) return l0;
+    const Interval pm = root_slope(which, out.coefficients, l0);
+    if (pm.contains_zero()) return l0;
     // λ and its gradient at m (thin coefficients), and its Hessian over B.
-    const G lm = root_jet(m, cubic_root(which, vm), vm);
-    const J lb = root_jet(bt, l0, out.coefficients);
+    const Interval lmv = cubic_root(which, vm);
+    const G lm = root_jet(m, lmv, vm, root_slope(which, vm, lmv));
+    const J lb = root_jet(bt, l0, out.coefficients, pm);
     return tighter(l0, lm.v + lm.dx * dx + lm.dy * dy + 0.5 * (lb.dxx * dx2 + 2.0 * lb.dxy * dxy + lb.dyy * dy2));
   };
   out.largest = root(Root::largest);
-  if (smallest) out.smallest = root(Root::smallest);
+  out.slope_largest = root_slope(Root::largest, out.coefficients, out.largest);
+  if (smallest) {
+    out.smallest = root(Root::smallest);
+    out.slope_smallest = root_slope(Root::smallest, out.coefficients, out.smallest);
+  }
   return out;
 }
 
@@ -311,8 +355,7 @@ BoxRoot root_over_box_cached(const CubicKey* key, const F& cubic_of, const certi
 // Implicit differentiation (gradients), the root's value and the coefficients'
 // values given (root_over_box over a box; the point values at a point).
 template <class S>
-certified::Grad<S> root_jet(const Cubic<certified::Grad<S>>& c, const S& l, const Cubic<S>& v) {
-  const S pm = cubic_slope(v, l);
+certified::Grad<S> root_jet(const Cubic<certified::Grad<S>>& c, const S& l, const Cubic<S>& /*v*/, const S& pm) {
   const S l2 = l * l;
   const S px = (c.c1.dx * l - c.c2.dx * l2) - c.c0.dx;
   const S py = (c.c1.dy * l - c.c2.dy * l2) - c.c0.dy;
@@ -321,9 +364,8 @@ certified::Grad<S> root_jet(const Cubic<certified::Grad<S>>& c, const S& l, cons
 
 // Implicit differentiation to second order (jets).
 template <class S>
-certified::Jet<S> root_jet(const Cubic<certified::Jet<S>>& c, const S& l, const Cubic<S>& v) {
+certified::Jet<S> root_jet(const Cubic<certified::Jet<S>>& c, const S& l, const Cubic<S>& v, const S& pm) {
   const S l2 = l * l;
-  const S pm = cubic_slope(v, l);
   const S pmm = cubic_curvature(v, l);
   // p_x = -c2_x λ² + c1_x λ - c0_x, p_μx = -2 c2_x λ + c1_x, p_xx = -c2_xx λ² + c1_xx λ - c0_xx.
   const S px = (c.c1.dx * l - c.c2.dx * l2) - c.c0.dx;
@@ -375,8 +417,9 @@ std::pair<certified::Interval, certified::Interval> roots_first_order(const F& c
   const Cubic<Interval> c = values(b);
   const auto root = [&](Root which) {
     const Interval l0 = cubic_root(which, c);
-    if (cubic_slope(c, l0).contains_zero()) return l0;
-    const G lb = root_jet(b, l0, c);
+    const Interval pm = root_slope(which, c, l0);
+    if (pm.contains_zero()) return l0;
+    const G lb = root_jet(b, l0, c, pm);
     return tighter(l0, cubic_root(which, vm) + lb.dx * dx + lb.dy * dy);
   };
   return {root(Root::largest), smallest ? root(Root::smallest) : Interval(0.0)};
@@ -446,8 +489,8 @@ std::pair<T, T> cubic_roots_field(const F& cubic_of, const T& x, const T& y, boo
           mine->dy = tighter(mine->dy, gy);
         }
       }
-      out.first = root_jet(c, b.largest, b.coefficients);
-      if (smallest) out.second = root_jet(c, b.smallest, b.coefficients);
+      out.first = root_jet(c, b.largest, b.coefficients, b.slope_largest);
+      if (smallest) out.second = root_jet(c, b.smallest, b.coefficients, b.slope_smallest);
     }
   } else {
     const Cubic<T> c = cubic_of(x, y);
@@ -457,21 +500,24 @@ std::pair<T, T> cubic_roots_field(const F& cubic_of, const T& x, const T& y, boo
       out.first = l1;
       if (smallest) out.second = cubic_root(Root::smallest, v);
     } else {
-      out.first = root_jet(c, l1, v);
-      if (smallest) out.second = root_jet(c, cubic_root(Root::smallest, v), v);
+      out.first = root_jet(c, l1, v, cubic_slope(v, l1));
+      if (smallest) {
+        const S l3 = cubic_root(Root::smallest, v);
+        out.second = root_jet(c, l3, v, cubic_slope(v, l3));
+      }
     }
   }
   return out;
 }
 
 // Whether the roots used are simple over a box, from the centred enclosures:
-// p_μ > 0 at λ_1 (λ_1 > λ_2) and λ_1 > 0, and with `smallest` at λ_3 (λ_3 < λ_2).
+// p_μ > 0 at λ_1 (λ_1 > λ_2) and λ_1 > 0, and with `smallest` at λ_3 (λ_3 < λ_2)
+// (root_slope).
 template <class F>
 bool simple_roots_over_box(const F& cubic_of, const certified::Interval& x, const certified::Interval& y,
                            bool smallest, const CubicKey* key = nullptr) {
   const BoxRoot b = root_over_box_cached(key, cubic_of, x, y, smallest);
-  return b.largest.lo > 0.0 && cubic_slope(b.coefficients, b.largest).lo > 0.0 &&
-         (!smallest || cubic_slope(b.coefficients, b.smallest).lo > 0.0);
+  return b.largest.lo > 0.0 && b.slope_largest.lo > 0.0 && (!smallest || b.slope_smallest.lo > 0.0);
 }
 
 }  // namespace pkmws::criteria::detail

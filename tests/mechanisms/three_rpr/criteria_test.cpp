@@ -107,6 +107,52 @@ TEST(ThreeRprConditioning, DoubleRootsAreEnclosedTightly) {
   }
 }
 
+// p'(λ) over a family of matrices (entries within ±h of a matrix with
+// singular values² 4, 2.25 and 1, rotated): root_slope encloses p'(λ_1) =
+// (λ_1 - λ_2)(λ_1 - λ_3) and p'(λ_3) of every member, and proves it positive
+// from separating points where the natural form 3λ² - 2c_2 λ + c_1 (its terms
+// cancel) does not.
+TEST(ThreeRprConditioning, RootSlopesEncloseAndSeparate) {
+  using certified::Interval;
+  using criteria::detail::Root;
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double rot[3][3] = {{0.6, -0.8, 0.0}, {0.48, 0.36, -0.8}, {0.64, 0.48, 0.6}};
+  const double d[3] = {2.0, 1.5, 1.0};
+  const Interval w[3] = {Interval(1.0), Interval(1.0), Interval(1.0)};
+  const double dw[3] = {1.0, 1.0, 1.0};
+  int separated = 0;
+  for (const double h : {1e-4, 1e-3, 3e-3, 1e-2}) {
+    Interval a[3][3];
+    double centre[3][3];
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        centre[i][j] = d[i] * rot[i][j];
+        a[i][j] = Interval(centre[i][j] - h, centre[i][j] + h);
+      }
+    }
+    const auto ci = criteria::detail::gram_invariants(a, w);
+    for (const Root which : {Root::largest, Root::smallest}) {
+      const Interval l = criteria::detail::cubic_root(which, ci);
+      const Interval natural = criteria::detail::cubic_slope(ci, l);
+      const Interval slope = criteria::detail::root_slope(which, ci, l);
+      EXPECT_GE(slope.lo, natural.lo);
+      if (natural.lo <= 0.0 && slope.lo > 0.0) ++separated;
+      for (int k = 0; k < 200; ++k) {
+        double m[3][3];
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) m[i][j] = centre[i][j] + h * u(rng);
+        }
+        const auto c = criteria::detail::gram_invariants(m, dw);
+        const double r = criteria::detail::cubic_root(which, c);
+        const double p1 = criteria::detail::cubic_slope(c, r);
+        EXPECT_TRUE(slope.contains(p1)) << h << ": " << p1 << " not in [" << slope.lo << ", " << slope.hi << "]";
+      }
+    }
+  }
+  EXPECT_GE(separated, 2);
+}
+
 TEST(ThreeRprConditioning, SurrogatesAgreeWithTheEvaluationsSvd) {
   for (const char* name : {"three_rpr_paminsa_phi25_r200", "three_rpr_prismatic"}) {
     const auto f = io::load_mechanism(dataset(name));
