@@ -130,7 +130,12 @@ def main():
         "and at the base joints, where every level curve ends; the charts trace both like any curve (their cells "
         "square in the charts' own units, the base charts of radius R/6). What is left is the traced cells' own "
         "cost: about one cell per cover leaf along each curve (2 400–4 900 for the DexTAR), each with a few "
-        "certified root brackets and interval jets.",
+        "certified root brackets and interval jets. The condition numbers of the 3-RPR and 3-PRP (roots of a "
+        "cubic) decide a third of their cells with a first-order enclosure and trace cells the natural form of "
+        "p'(λ) could not call smooth, from the roots' separation (docs/theory/level_sets.md, 3-RPR).",
+        "",
+        "Compare rows of one run: on this shared machine the same code's times drift between sessions by up to "
+        "1.6× (the five-bar rows of 2026-12-02 and 2026-12-03, code unchanged), more than within a run.",
     ]
     update_report(a.report, HEADING, "\n".join(lines))
     print(f"level_sets.py: wrote {n} cases to {a.report}")

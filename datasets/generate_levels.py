@@ -64,6 +64,12 @@ write("three_prp_example_alpha20",
       derived(base_prp, "3-PRP example, pressure angle <= 20 deg",
               {"max_pressure_angle_deg": 20.0},
               "sub-level set of the chains' pressure angles (not in the paper)"))
+# ... and where its Jacobian dq/dx' = B^-1 A (x' = (x, y, L phi), L the
+# platform's circumradius) is conditioned better than 2.
+write("three_prp_example_kappa2",
+      derived(base_prp, "3-PRP example, condition number <= 2",
+              {"max_condition_number": 2.0},
+              "sub-level set of the condition number of dq/dx' (not in the paper)"))
 
 # Biglide, simplified scheme ([Strutynskyi] fig. 8): the workspace where both
 # actuators move at most t times faster than the tool along y, V_i / V_y <= t.

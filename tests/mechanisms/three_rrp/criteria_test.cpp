@@ -129,6 +129,7 @@ void expect_bounds_contain_grid(const char* name, int n, double relative) {
 
 TEST(ThreeRrpCriteria, CertifiedAreasContainGridEstimates) {
   expect_bounds_contain_grid("three_prp_example_alpha20", 800, 3e-3);
+  expect_bounds_contain_grid("three_prp_example_kappa2", 800, 3e-3);
 }
 
 }  // namespace
