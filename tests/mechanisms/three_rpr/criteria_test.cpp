@@ -61,6 +61,36 @@ TEST(ThreeRprConditioning, CubicRootsAreTheSquaredSingularValues) {
   EXPECT_EQ(criteria::detail::cubic_root(criteria::detail::Root::smallest, criteria::detail::gram_invariants(s, w)), 0.0);
 }
 
+// A family of 3x3 matrices: diag(d) R and every matrix whose entries are
+// within ±h of it. Its cubic's coefficients in interval arithmetic, and the
+// coefficients of random members in double.
+struct MatrixFamily {
+  double centre[3][3];
+  double h;
+  MatrixFamily(const double (&d)[3], const double (&rot)[3][3], double half_width) : h(half_width) {
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) centre[i][j] = d[i] * rot[i][j];
+    }
+  }
+  criteria::detail::Cubic<certified::Interval> interval_cubic() const {
+    certified::Interval a[3][3];
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) a[i][j] = certified::Interval(centre[i][j] - h, centre[i][j] + h);
+    }
+    const certified::Interval w[3] = {certified::Interval(1.0), certified::Interval(1.0), certified::Interval(1.0)};
+    return criteria::detail::gram_invariants(a, w);
+  }
+  criteria::detail::Cubic<double> member(std::mt19937& rng) const {
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    double m[3][3];
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) m[i][j] = centre[i][j] + h * u(rng);
+    }
+    const double w[3] = {1.0, 1.0, 1.0};
+    return criteria::detail::gram_invariants(m, w);
+  }
+};
+
 // Two equal singular values (the isotropic centre of a symmetric platform,
 // or where λ_2 = λ_3 crosses): a double root moves like the square root of
 // the coefficients' spread, and each end is proved on its own (the end a
@@ -73,33 +103,18 @@ TEST(ThreeRprConditioning, DoubleRootsAreEnclosedTightly) {
   using certified::Interval;
   using criteria::detail::Root;
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const double eps = 1e-9;
   for (const auto& [d0, d1, d2] : {std::tuple{2.0, 2.0, 1.0}, std::tuple{3.0, 0.5, 0.5}, std::tuple{1.0, 1.0, 1.0}}) {
     const double rot[3][3] = {{0.6, -0.8, 0.0}, {0.8, 0.6, 0.0}, {0.0, 0.0, 1.0}};
     const double d[3] = {d0, d1, d2};
-    Interval a[3][3];
-    double centre[3][3];
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        centre[i][j] = d[i] * rot[i][j];
-        a[i][j] = Interval(centre[i][j] - eps, centre[i][j] + eps);
-      }
-    }
-    const Interval w[3] = {Interval(1.0), Interval(1.0), Interval(1.0)};
-    const auto ci = criteria::detail::gram_invariants(a, w);
+    const MatrixFamily family(d, rot, 1e-9);
+    const auto ci = family.interval_cubic();
     const Interval l1 = criteria::detail::cubic_root(Root::largest, ci);
     const Interval l3 = criteria::detail::cubic_root(Root::smallest, ci);
     const double within = d0 == d2 ? 5e-2 : 1e-3;
     EXPECT_LT(l1.width(), within) << d0 << " " << d1 << " " << d2;
     EXPECT_LT(l3.width(), within) << d0 << " " << d1 << " " << d2;
-    const double dw[3] = {1.0, 1.0, 1.0};
     for (int k = 0; k < 300; ++k) {
-      double m[3][3];
-      for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) m[i][j] = centre[i][j] + eps * u(rng);
-      }
-      const auto c = criteria::detail::gram_invariants(m, dw);
+      const auto c = family.member(rng);
       const double r1 = criteria::detail::cubic_root(Root::largest, c), r3 = criteria::detail::cubic_root(Root::smallest, c);
       EXPECT_TRUE(l1.contains(r1)) << r1 << " not in [" << l1.lo << ", " << l1.hi << "]";
       EXPECT_TRUE(l3.contains(r3)) << r3 << " not in [" << l3.lo << ", " << l3.hi << "]";
@@ -116,22 +131,12 @@ TEST(ThreeRprConditioning, RootSlopesEncloseAndSeparate) {
   using certified::Interval;
   using criteria::detail::Root;
   std::mt19937 rng(8);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
   const double rot[3][3] = {{0.6, -0.8, 0.0}, {0.48, 0.36, -0.8}, {0.64, 0.48, 0.6}};
   const double d[3] = {2.0, 1.5, 1.0};
-  const Interval w[3] = {Interval(1.0), Interval(1.0), Interval(1.0)};
-  const double dw[3] = {1.0, 1.0, 1.0};
   int separated = 0;
   for (const double h : {1e-4, 1e-3, 3e-3, 1e-2}) {
-    Interval a[3][3];
-    double centre[3][3];
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        centre[i][j] = d[i] * rot[i][j];
-        a[i][j] = Interval(centre[i][j] - h, centre[i][j] + h);
-      }
-    }
-    const auto ci = criteria::detail::gram_invariants(a, w);
+    const MatrixFamily family(d, rot, h);
+    const auto ci = family.interval_cubic();
     for (const Root which : {Root::largest, Root::smallest}) {
       const Interval l = criteria::detail::cubic_root(which, ci);
       const Interval natural = criteria::detail::cubic_slope(ci, l);
@@ -139,11 +144,7 @@ TEST(ThreeRprConditioning, RootSlopesEncloseAndSeparate) {
       EXPECT_GE(slope.lo, natural.lo);
       if (natural.lo <= 0.0 && slope.lo > 0.0) ++separated;
       for (int k = 0; k < 200; ++k) {
-        double m[3][3];
-        for (int i = 0; i < 3; ++i) {
-          for (int j = 0; j < 3; ++j) m[i][j] = centre[i][j] + h * u(rng);
-        }
-        const auto c = criteria::detail::gram_invariants(m, dw);
+        const auto c = family.member(rng);
         const double r = criteria::detail::cubic_root(which, c);
         const double p1 = criteria::detail::cubic_slope(c, r);
         EXPECT_TRUE(slope.contains(p1)) << h << ": " << p1 << " not in [" << slope.lo << ", " << slope.hi << "]";
