@@ -244,6 +244,19 @@ inline certified::Interval tighter(const certified::Interval& a, const certified
   const certified::Interval both = certified::intersect(a, b);
   return both.lo <= both.hi ? both : a;
 }
+// The discriminant of p, Δ = c₂²c₁² − 4c₁³ − 4c₂³c₀ + 18c₂c₁c₀ − 27c₀²
+// = Π (λ_i − λ_j)² over the pairs: positive exactly where the three roots are
+// distinct. As p′(λ₁)² = Δ / (λ₂ − λ₃)² and p′(λ₃)² = Δ / (λ₁ − λ₂)², with
+// both differences in [0, c₂], every root's p′ is at least √Δ / c₂: a bound
+// that holds where the roots' enclosures overlap (close roots, the natural
+// form and root_slope both fail), if Δ's centred form is positive.
+template <class T> T discriminant(const Cubic<T>& c) {
+  using certified::sqr;
+  const T c21 = c.c2 * c.c1;
+  return sqr(c21) - 4.0 * (sqr(c.c1) * c.c1) - 4.0 * ((sqr(c.c2) * c.c2) * c.c0) + 18.0 * (c21 * c.c0) -
+         27.0 * sqr(c.c0);
+}
+
 // `cubic_of(u, v)`: the coefficients at (u, v) for u, v Interval, Grad<Interval>
 // or Jet<Interval>. A point (both widths 0) needs no centred form.
 template <class F>
@@ -296,9 +309,24 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
   }
   out.jets = bt;
   out.has_jets = true;
+  // p′ over B from Δ's second-order centred form, asked only where
+  // root_slope fails (a few multiplications of the jets at hand).
+  double discriminant_slope = -1.0;  // not computed yet
+  const auto with_discriminant = [&](const Interval& pm) {
+    if (!pm.contains_zero() || !(out.coefficients.c2.hi > 0.0)) return pm;
+    if (discriminant_slope < 0.0) {
+      discriminant_slope = 0.0;
+      const G dm = discriminant(m);
+      const J db = discriminant(bt);
+      const Interval d = tighter(db.v, dm.v + dm.dx * dx + dm.dy * dy +
+                                           0.5 * (db.dxx * dx2 + 2.0 * db.dxy * dxy + db.dyy * dy2));
+      if (d.lo > 0.0 && d.finite()) discriminant_slope = (certified::sqrt(Interval(d.lo)) / Interval(out.coefficients.c2.hi)).lo;
+    }
+    return discriminant_slope > 0.0 ? Interval(std::max(pm.lo, discriminant_slope), std::max(pm.hi, discriminant_slope)) : pm;
+  };
   const auto root = [&](Root which) {
     const Interval l0 = cubic_root(which, out.coefficients);
-    const Interval pm = root_slope(which, out.coefficients, l0);
+    const Interval pm = with_discriminant(root_slope(which, out.coefficients, l0));
     if (pm.contains_zero()) return l0;
     // λ and its gradient at m (thin coefficients), and its Hessian over B.
     const Interval lmv = cubic_root(which, vm);
@@ -307,10 +335,10 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
     return tighter(l0, lm.v + lm.dx * dx + lm.dy * dy + 0.5 * (lb.dxx * dx2 + 2.0 * lb.dxy * dxy + lb.dyy * dy2));
   };
   out.largest = root(Root::largest);
-  out.slope_largest = root_slope(Root::largest, out.coefficients, out.largest);
+  out.slope_largest = with_discriminant(root_slope(Root::largest, out.coefficients, out.largest));
   if (smallest) {
     out.smallest = root(Root::smallest);
-    out.slope_smallest = root_slope(Root::smallest, out.coefficients, out.smallest);
+    out.slope_smallest = with_discriminant(root_slope(Root::smallest, out.coefficients, out.smallest));
   }
   return out;
 }

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <random>
+#include <type_traits>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -152,6 +153,48 @@ TEST(ThreeRprConditioning, RootSlopesEncloseAndSeparate) {
     }
   }
   EXPECT_GE(separated, 2);
+}
+
+// Close roots over a box: M(x, y) = diag(2 + x, 1.9 + y, 1) R, λ₁ ≈ 4 and
+// λ₂ ≈ 3.61. Over a box of half-width 0.005 the roots' enclosures from the
+// coefficients overlap (neither the natural form nor root_slope proves
+// p′(λ₁) > 0); the discriminant's centred form does (√Δ / c₂ ≈ 0.3, the true
+// p′ ≈ 1.2). On every box, p′ and λ enclose every point's.
+TEST(ThreeRprConditioning, CloseRootsAreSeparatedByTheDiscriminant) {
+  using certified::Interval;
+  using criteria::detail::Root;
+  const auto cubic_of = [](const auto& x, const auto& y) {
+    using T = std::decay_t<decltype(x)>;
+    const double rot[3][3] = {{0.6, -0.8, 0.0}, {0.48, 0.36, -0.8}, {0.64, 0.48, 0.6}};
+    const T d[3] = {x + 2.0, y + 1.9, T(1.0)};
+    T a[3][3];
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) a[i][j] = d[i] * rot[i][j];
+    }
+    const T w[3] = {T(1.0), T(1.0), T(1.0)};
+    return criteria::detail::gram_invariants(a, w);
+  };
+  // R is orthogonal: the roots at the centre are 4, 3.61 and 1, Δ = Π (λ_i − λ_j)².
+  const double delta = (4.0 - 3.61) * (4.0 - 3.61) * 9.0 * (3.61 - 1.0) * (3.61 - 1.0);
+  EXPECT_NEAR(criteria::detail::discriminant(cubic_of(0.0, 0.0)), delta, 1e-12 * 100.0);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int by_discriminant = 0;
+  for (const double h : {0.005, 0.02, 0.05}) {
+    const Interval x(-h, h), y(-h, h);
+    const auto b = criteria::detail::root_over_box(cubic_of, x, y, true);
+    const Interval l0 = criteria::detail::cubic_root(Root::largest, b.coefficients);
+    if (criteria::detail::root_slope(Root::largest, b.coefficients, l0).lo <= 0.0 && b.slope_largest.lo > 0.0) {
+      ++by_discriminant;
+    }
+    for (int k = 0; k < 300; ++k) {
+      const auto c = cubic_of(h * u(rng), h * u(rng));
+      const double r1 = criteria::detail::cubic_root(Root::largest, c);
+      EXPECT_TRUE(b.largest.contains(r1)) << h;
+      EXPECT_TRUE(b.slope_largest.contains(criteria::detail::cubic_slope(c, r1))) << h;
+    }
+  }
+  EXPECT_GE(by_discriminant, 1);
 }
 
 TEST(ThreeRprConditioning, SurrogatesAgreeWithTheEvaluationsSvd) {
