@@ -307,7 +307,7 @@ TEST(ThreeRprConditioning, CertifiedVelocityRatioAreaContainsAGridEstimate) {
   expect_bounds_contain_grid("three_rpr_paminsa_phi0_r200", "velocity_ratio", 12.0, 1e-4);
 }
 
-// ~40 s: PKMWS_HEAVY_GTESTS.
+// 1.5 s in release (40 s when it was written): PKMWS_HEAVY_GTESTS.
 TEST(ThreeRprConditioning, CertifiedConditionNumberAreaContainsAGridEstimate) {
   expect_bounds_contain_grid("three_rpr_paminsa_phi0_kappa4", "condition_number", 4.0, 1e-6);
 }
