@@ -285,6 +285,7 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
   // At m only the value and the gradient are used: a gradient is a third of a jet.
   const Cubic<G> m = cubic_of(G::variable_x(Interval(xm)), G::variable_y(Interval(ym)));
   const Cubic<J> b = cubic_of(J::variable_x(x), J::variable_y(y));
+  // The second-order form of a function with its gradient at m and its jet over B.
   const auto value = [&](const G& at_m, const J& over) {
     return tighter(over.v, at_m.v + at_m.dx * dx + at_m.dy * dy +
                                0.5 * (over.dxx * dx2 + 2.0 * over.dxy * dxy + over.dyy * dy2));
@@ -316,10 +317,7 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
     if (!pm.contains_zero() || !(out.coefficients.c2.hi > 0.0)) return pm;
     if (discriminant_slope < 0.0) {
       discriminant_slope = 0.0;
-      const G dm = discriminant(m);
-      const J db = discriminant(bt);
-      const Interval d = tighter(db.v, dm.v + dm.dx * dx + dm.dy * dy +
-                                           0.5 * (db.dxx * dx2 + 2.0 * db.dxy * dxy + db.dyy * dy2));
+      const Interval d = value(discriminant(m), discriminant(bt));
       if (d.lo > 0.0 && d.finite()) discriminant_slope = (certified::sqrt(Interval(d.lo)) / Interval(out.coefficients.c2.hi)).lo;
     }
     return discriminant_slope > 0.0 ? Interval(std::max(pm.lo, discriminant_slope), std::max(pm.hi, discriminant_slope)) : pm;
@@ -331,8 +329,7 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
     // λ and its gradient at m (thin coefficients), and its Hessian over B.
     const Interval lmv = cubic_root(which, vm);
     const G lm = root_jet(m, lmv, vm, root_slope(which, vm, lmv));
-    const J lb = root_jet(bt, l0, out.coefficients, pm);
-    return tighter(l0, lm.v + lm.dx * dx + lm.dy * dy + 0.5 * (lb.dxx * dx2 + 2.0 * lb.dxy * dxy + lb.dyy * dy2));
+    return value(lm, root_jet(bt, l0, out.coefficients, pm));  // the jet's value is l0
   };
   out.largest = root(Root::largest);
   out.slope_largest = with_discriminant(root_slope(Root::largest, out.coefficients, out.largest));

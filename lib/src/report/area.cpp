@@ -207,7 +207,6 @@ criteria::LimitedWorkspace limited_workspace(const io::MechanismFile& file, cons
   return criteria::limited_workspace(file, criteria::file_limits(file), options.budget.apply(level_set_options(options)));
 }
 
-
 bodies::RealWorkspace real_workspace(const io::MechanismFile& file, const geometry::Region& reachable, int depth) {
   bodies::InterferenceOptions options;
   options.max_depth = depth;
