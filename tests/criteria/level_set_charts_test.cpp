@@ -87,6 +87,12 @@ TEST(LevelSetCharts, TheRestAndTheChartsPartsAddUpToTheWorkspace) {
     ASSERT_TRUE(charts);
     double lower = charts->rest.area(), upper = lower;
     for (const auto& chart : charts->charts) {
+      upper += chart.uncovered;
+      if (chart.cuts.empty()) {  // the whole window (a base disk): ∫∫ ρ, exact for an affine ρ
+        lower += chart.weight.box(chart.window) * (1.0 - 1e-14) - chart.overlap;
+        upper += chart.weight.box(chart.window) * (1.0 + 1e-14);
+        continue;
+      }
       std::vector<certified::Constraint> cs;
       for (const auto& cut : chart.cuts) cs.push_back({cut.field.get(), cut.level});
       certified::LevelSetOptions o;
@@ -102,6 +108,30 @@ TEST(LevelSetCharts, TheRestAndTheChartsPartsAddUpToTheWorkspace) {
     EXPECT_LE(lower, exact * (1.0 + 1e-12)) << f.name;
     EXPECT_GE(upper, exact * (1.0 - 1e-12)) << f.name;
     EXPECT_LE(upper - lower, 1e-8 * exact) << f.name;
+  }
+}
+
+TEST(LevelSetCharts, TheSliverBetweenAWindowAndTheRestIsBounded) {
+  // A chart's window ends just below the rest's circle (v <= vt < vc): the
+  // annular sliver between the image of its top edge and that circle is in
+  // neither part, and `uncovered` must bound its area. The DexTAR: bands at
+  // r_k = 0.4 · 31/32 (charts 0, 1), base disks of radius 0.4 / 6 (2, 3).
+  const auto dextar = five_bar(0.125, 0.2, 0.2, 0.2, 0.2, 1, -1, 40.0);
+  const auto charts = dextar.model->capability<criteria::CriterionFields>()->charts(dextar.model->workspace());
+  ASSERT_TRUE(charts);
+  ASSERT_EQ(charts->charts.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto& chart = charts->charts[i];
+    const Point base{i % 2 == 0 ? -0.125 : 0.125, 0.0};
+    const double rho = i < 2 ? 0.4 * 31.0 / 32.0 : 0.4 / 6.0;
+    const Point top = chart.to_plane({0.0, chart.window.max.y});
+    const double rt = std::hypot(top.x - base.x, top.y - base.y);
+    EXPECT_TRUE(i < 2 ? rt > rho : rt < rho) << i;  // the window stops short of the rest
+    // θ = c u with ρ(u, v) = c v: the window's angle is c × its width.
+    const double sector = 0.5 * chart.weight.cy * chart.window.width() * std::abs(rt * rt - rho * rho);
+    EXPECT_GT(sector, 0.0) << i;
+    EXPECT_GE(chart.uncovered, sector) << i;
+    EXPECT_LE(chart.uncovered, 1.5 * sector) << i;
   }
 }
 

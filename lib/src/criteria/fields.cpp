@@ -273,7 +273,7 @@ certified::LevelSetResult charted_sublevel_set(const std::vector<certified::Cons
     const certified::LevelSetResult r = certified::sublevel_set(
         chart_cs[k], geometry::rectangle(w), [](const geometry::Box&) { return certified::CellState::inside; }, co);
     total.region.area_lower += std::max(0.0, r.region.area_lower - chart.overlap);
-    total.region.area_upper += r.region.area_upper;
+    total.region.area_upper += r.region.area_upper + chart.uncovered;
     total.traced_cells += r.traced_cells;
     total.undecided_cells += r.undecided_cells;
     total.curve_points += r.curve_points;

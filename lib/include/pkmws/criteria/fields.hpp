@@ -108,6 +108,7 @@ struct CriterionFields {
     certified::AreaWeight weight;         // dA = ρ du dv
     std::vector<WorkspaceCut> cuts;       // the chart's part of W: ⋂ {F_k <= level_k} in the window
     double overlap = 0.0;                 // a bound on the area the window counts twice (taken off lower bounds)
+    double uncovered = 0.0;               // a bound on the area of W in neither the rest nor a window (added to upper bounds)
     std::function<geometry::Point(geometry::Point)> to_plane;  // (u, v) -> (x, y), for the traced curves
     /// The surrogate of the criterion field with this key in the chart's
     /// coordinates; null when the chart does not have it.

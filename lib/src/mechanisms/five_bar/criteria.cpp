@@ -231,23 +231,16 @@ struct FiveBarChart {
 };
 
 // A condition of a chart's part of W, as a field F <= 0 in (u, v):
-// `band`: v² + ρ² - R_k² (r_k >= ρ, the band at leg k's circle); `below`:
-// v - ρ (r <= ρ at a base joint); `disk`: σ (|C - centre|² - ρ²) with ρ = ρa + ρb
-// (σ = +1: inside the disk, -1: outside).
+// σ (|C - centre|² - ρ²) with ρ = ρa + ρb (σ = +1: inside the disk, -1:
+// outside). (The edge towards the rest, a line v = const, is the window's.)
 struct FiveBarChartCut {
   FiveBarChart chart;
-  enum class Kind { band, below, disk } kind = Kind::disk;
   Point centre{};
   double rho_a = 0.0, rho_b = 0.0;
   double sign = 1.0;
   template <class T> T eval(const T& u, const T& v) const {
     using certified::sqr;
     const T rho = T(rho_a) + T(rho_b);
-    if (kind == Kind::below) return v - rho;
-    if (kind == Kind::band) {
-      const T big = T(chart.plane.l1[chart.k]) + T(chart.plane.l2[chart.k]);
-      return sqr(v) + sqr(rho) - sqr(big);
-    }
     T x, y;
     chart.chart_leg(u, v, x, y);
     return sign * (sqr(x - centre.x) + sqr(y - centre.y) - sqr(rho));
@@ -316,25 +309,32 @@ std::optional<CriterionFields::Charts> FiveBarCosEps::charts(const geometry::Reg
     const bool full = theta_max >= 3.14;
     const double umax = (full ? pi_up * (1.0 + 4e-16) : theta_max) * scale;
     CriterionFields::Chart ch;
-    ch.window = Box{{-umax, 0.0}, {umax, vmax * (1.0 + 1e-6)}};
+    // The part towards the rest, v <= vc (r >= ρ_k on the band, r <= ρ_base at a
+    // base; vmax is vc to 1e-14), ends at the window's top edge vt just
+    // below vc, not at a cut: where a level curve crossed a cut's curve both
+    // were undecided, and no depth traced such cells (the DexTAR (-1, +1),
+    // α <= 40°: 860 traced cells of band 0 piled up at one such crossing).
+    // The sliver vt < v <= vc is in neither part: its area, ∫ c v dv du, is
+    // added to the upper bounds.
+    const double vt = vmax * (1.0 - 1e-12);
+    ch.window = Box{{-umax, 0.0}, {umax, vt}};
     ch.weight = certified::AreaWeight{0.0, 0.0, m.c};
     ch.overlap = full ? 1e-14 * band_area_per_rad : 0.0;
+    const double vc = vmax * (1.0 + 1e-13);
+    ch.uncovered = m.c * umax * (vc - vt) * (vc + vt) * (1.0 + 1e-9);
     ch.to_plane = [m](Point p) { return m.to_plane(p.x, p.y); };
     ch.field = point_platform_chart_fields(m, "five_bar");
-    const auto cut = [&](FiveBarChartCut::Kind kind, Point centre, double ra, double rb, double sign) {
-      FiveBarChartCut f{m, kind, centre, ra, rb, sign};
+    const auto cut = [&](Point centre, double ra, double rb, double sign) {
+      FiveBarChartCut f{m, centre, ra, rb, sign};
       ch.cuts.push_back({std::make_shared<certified::TemplateField<FiveBarChartCut>>(f), 0.0});
     };
-    if (base_chart) {
-      cut(FiveBarChartCut::Kind::below, {}, rho_base[k], 0.0, 1.0);
-    } else {
-      cut(FiveBarChartCut::Kind::band, {}, rho[k], 0.0, 1.0);
-      cut(FiveBarChartCut::Kind::disk, base[j], l1[j], l2[j], 1.0);                       // r_j <= R_j
-      if (l1[j] != l2[j]) cut(FiveBarChartCut::Kind::disk, base[j], l1[j], -l2[j], -1.0);  // r_j >= |l1 - l2|
-      if (k == 1 && band[0]) cut(FiveBarChartCut::Kind::disk, base[0], rho[0], 0.0, 1.0);  // not in band 0
+    if (!base_chart) {
+      cut(base[j], l1[j], l2[j], 1.0);                       // r_j <= R_j
+      if (l1[j] != l2[j]) cut(base[j], l1[j], -l2[j], -1.0);  // r_j >= |l1 - l2|
+      if (k == 1 && band[0]) cut(base[0], rho[0], 0.0, 1.0);  // not in band 0
       for (std::size_t b = 0; b < 2; ++b) {
         const double db = b == k ? 0.0 : dist;
-        if (at_base[b] && db + rho_base[b] >= rho[k]) cut(FiveBarChartCut::Kind::disk, base[b], rho_base[b], 0.0, -1.0);
+        if (at_base[b] && db + rho_base[b] >= rho[k]) cut(base[b], rho_base[b], 0.0, -1.0);
       }
     }
     out.charts.push_back(std::move(ch));
