@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 
 #include "detail/parallel.hpp"
@@ -35,8 +36,9 @@ double target_width(const LevelSetOptions& options, double area) {
 
 // Value enclosure of F over a box: F's cheap form if that decides, else its
 // natural form, intersected with the centred (mean-value) form when the box
-// lies in F's smooth domain.
-Interval enclose_value(const ScalarField& f, const Box& box, double level) {
+// lies in F's smooth domain (then F's gradient over the box, which that form
+// takes, is stored in `grad` if given).
+Interval enclose_value(const ScalarField& f, const Box& box, double level, std::optional<Grad<Interval>>* grad = nullptr) {
   const Interval cheap = f.enclose_cheap(box);
   if (cheap.hi <= level || cheap.lo > level) return cheap;
   Interval v = f.enclose(box);
@@ -45,6 +47,7 @@ Interval enclose_value(const ScalarField& f, const Box& box, double level) {
   // only here (it can cost as much as the enclosure).
   if (box.width() > 0.0 && f.domain(box) == CellState::inside) {
     const Grad<Interval> j = f.grad(box);
+    if (grad) *grad = j;
     if (j.dx.finite() && j.dy.finite()) {
       const Point c{0.5 * (box.min.x + box.max.x), 0.5 * (box.min.y + box.max.y)};
       const Interval fc = f.enclose(make_box(c.x, c.y, c.x, c.y));
@@ -59,17 +62,22 @@ Interval enclose_value(const ScalarField& f, const Box& box, double level) {
 }
 
 // The set is ⋂_k { F_k <= level_k } (within W). `undecided_index` is the one
-// constraint left undecided when all others hold on the whole box (else -1).
-CellState classify(const std::vector<Constraint>& cs, const Box& box, int* undecided_index = nullptr) {
+// constraint left undecided when all others hold on the whole box (else -1);
+// `grad`, that constraint's gradient over the box where its test took one.
+CellState classify(const std::vector<Constraint>& cs, const Box& box, int* undecided_index = nullptr,
+                   std::optional<Grad<Interval>>* grad = nullptr) {
   int undecided = 0, last = -1;
+  std::optional<Grad<Interval>> g;
   for (std::size_t k = 0; k < cs.size(); ++k) {
     const ScalarField& f = *cs[k].field;
     if (f.excluded(box)) return CellState::outside;
-    const Interval v = enclose_value(f, box, cs[k].level);
+    g.reset();
+    const Interval v = enclose_value(f, box, cs[k].level, grad ? &g : nullptr);
     if (v.lo > cs[k].level) return CellState::outside;
     if (!(v.hi <= cs[k].level)) {
       ++undecided;
       last = static_cast<int>(k);
+      if (grad) *grad = g;
     }
   }
   if (undecided_index) *undecided_index = undecided == 1 ? last : -1;
@@ -523,9 +531,11 @@ Grad<Interval> centred_gradient(const ScalarField& f, const Box& b, Grad<Interva
   return g;
 }
 
-CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double tau, const AreaWeight& weight) {
+// `known`: F's gradient over the cell, if the cell's test took it already.
+CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double tau, const AreaWeight& weight,
+                    const std::optional<Grad<Interval>>& known = std::nullopt) {
   CellTrace t;
-  Grad<Interval> j = f.grad(cell);
+  Grad<Interval> j = known ? *known : f.grad(cell);
   // The centred form where a component's sign is unknown: it decides which
   // graph direction (the steeper one) is taken, and a poor choice costs pieces.
   // Where one component's sign is known and the gradient at the centre
@@ -833,7 +843,8 @@ void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, co
   const CellState in_w = within_test(cell);
   if (in_w == CellState::outside) return;  // S ⊆ W
   int active = -1;
-  const CellState c = classify(cs, cell, &active);
+  std::optional<Grad<Interval>> grad;
+  const CellState c = classify(cs, cell, &active, &grad);
   if (c == CellState::inside) { add_inside(within_test, weight, cell, in_w, small_cell, r); return; }
   if (c == CellState::outside) return;
   if (trace && active >= 0) {
@@ -843,7 +854,7 @@ void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, co
     // exactly (summarize), instead of refining the points where the level
     // curve meets W's boundary to the depth limit.
     if (k.field->domain(cell) == CellState::inside) {
-      CellTrace t = try_trace(*k.field, k.level, cell, tau, weight);
+      CellTrace t = try_trace(*k.field, k.level, cell, tau, weight, grad);
       t.constraint = static_cast<std::size_t>(active);
       if (t.ok) {
         (in_w == CellState::inside ? r.traced : r.traced_across).emplace_back(cell, std::move(t));
