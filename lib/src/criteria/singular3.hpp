@@ -72,6 +72,37 @@ template <class S> S cubic_value(const Cubic<S>& c, const S& mu) { return ((mu -
 template <class S> S cubic_slope(const Cubic<S>& c, const S& mu) { return (3.0 * mu - 2.0 * c.c2) * mu + c.c1; }
 template <class S> S cubic_curvature(const Cubic<S>& c, const S& mu) { return 6.0 * mu - 2.0 * c.c2; }
 
+// The cubics of a box: coefficients c enclosed there and, when known, their
+// values at the box's centre m and gradients over the box, for p(μ) in its
+// mean-value form in (x, y):
+//   p(μ; B) ⊆ p(μ; m) + ∂p/∂x(μ; B) dx + ∂p/∂y(μ; B) dy,  ∂p/∂x = -c2_x μ² + c1_x μ - c0_x.
+// The coefficients move together (they are invariants of one matrix), and
+// their independent enclosures c admit cubics whose roots are far closer than
+// any in the box: near λ_1 ≈ λ_2 the sign tests on p(μ) from c alone failed
+// where this form decides them.
+struct CubicBox {
+  Cubic<certified::Interval> c;
+  bool has_gradients = false;
+  Cubic<certified::Interval> m, gx, gy;
+  certified::Interval dx, dy;
+  CubicBox(const Cubic<certified::Interval>& coefficients) : c(coefficients) {}  // NOLINT: coefficients alone
+  CubicBox(const Cubic<certified::Interval>& coefficients, const Cubic<certified::Interval>& at_centre,
+           const Cubic<certified::Interval>& grad_x, const Cubic<certified::Interval>& grad_y, const certified::Interval& ddx,
+           const certified::Interval& ddy)
+      : c(coefficients), has_gradients(true), m(at_centre), gx(grad_x), gy(grad_y), dx(ddx), dy(ddy) {}
+  // The x- and y-slopes of p at μ, times the box's offsets from m.
+  certified::Interval moved(const certified::Interval& mu) const {
+    const auto slope = [&](const Cubic<certified::Interval>& g) { return (-(g.c2 * mu) + g.c1) * mu - g.c0; };
+    return slope(gx) * dx + slope(gy) * dy;
+  }
+  certified::Interval value(const certified::Interval& mu) const {
+    const certified::Interval natural = cubic_value(c, mu);
+    if (!has_gradients) return natural;
+    const certified::Interval both = certified::intersect(natural, cubic_value(m, mu) + moved(mu));
+    return both.lo <= both.hi ? both : natural;
+  }
+};
+
 // The root in double: trigonometric form of the depressed cubic (three real
 // roots: p is the characteristic polynomial of a symmetric matrix), then Newton.
 inline double cubic_root(Root which, const Cubic<double>& c) {
@@ -122,13 +153,15 @@ inline double cubic_root(Root which, const Cubic<double>& c) {
 struct RootStart {
   double r = 0.0, first = 0.0;
 };
-inline RootStart root_start(Root which, const Cubic<certified::Interval>& c) {
+inline RootStart root_start(Root which, const CubicBox& box) {
+  const Cubic<certified::Interval>& c = box.c;
   const double top = c.c2.hi;
   const Cubic<double> mid{c.c2.mid(), c.c1.mid(), c.c0.mid()};
   const double r = cubic_root(which, mid);
   const double slope = std::abs(cubic_slope(mid, r)), curvature = std::abs(cubic_curvature(mid, r));
   // How far the coefficients' spread moves the root, and a floor.
-  const double spread = 0.5 * (c.c2.width() * r * r + c.c1.width() * std::abs(r) + c.c0.width());
+  double spread = 0.5 * (c.c2.width() * r * r + c.c1.width() * std::abs(r) + c.c0.width());
+  if (box.has_gradients) spread = std::min(spread, 0.5 * box.moved(certified::Interval(r)).width());
   double delta = slope > 0.0 ? spread / slope : top;
   if (curvature > 0.0) delta = std::min(delta, std::sqrt(2.0 * spread / curvature));
   delta = std::min(delta, std::cbrt(spread));  // a triple root (isotropy): the third derivative is 6
@@ -136,8 +169,9 @@ inline RootStart root_start(Root which, const Cubic<certified::Interval>& c) {
 }
 
 // One end of the enclosure (upper_end: U, else L), or the fallback's end.
-inline double root_end(Root which, bool upper_end, const Cubic<certified::Interval>& c, const RootStart& start) {
+inline double root_end(Root which, bool upper_end, const CubicBox& box, const RootStart& start) {
   using certified::Interval;
+  const Cubic<Interval>& c = box.c;
   const double top = c.c2.hi;
   const double fallback_end = which == Root::largest ? (upper_end ? top : std::max(0.0, c.c2.lo / 3.0))
                                                      : (upper_end ? std::max(0.0, top / 3.0) : 0.0);
@@ -149,31 +183,32 @@ inline double root_end(Root which, bool upper_end, const Cubic<certified::Interv
     const Interval u(at);
     bool proved = false;
     if (which == Root::largest) {
-      proved = upper_end ? cubic_value(c, u).lo > 0.0 && cubic_slope(c, u).lo > 0.0 && cubic_curvature(c, u).lo > 0.0
-                         : cubic_value(c, u).hi < 0.0;
+      proved = upper_end ? box.value(u).lo > 0.0 && cubic_slope(c, u).lo > 0.0 && cubic_curvature(c, u).lo > 0.0
+                         : box.value(u).hi < 0.0;
     } else {
-      proved = upper_end ? cubic_value(c, u).lo > 0.0
-                         : cubic_value(c, u).hi < 0.0 && cubic_slope(c, u).lo > 0.0 && cubic_curvature(c, u).hi < 0.0;
+      proved = upper_end ? box.value(u).lo > 0.0
+                         : box.value(u).hi < 0.0 && cubic_slope(c, u).lo > 0.0 && cubic_curvature(c, u).hi < 0.0;
     }
     if (proved) return at;
   }
   return fallback_end;
 }
 
-inline certified::Interval cubic_root(Root which, const Cubic<certified::Interval>& c) {
+inline certified::Interval cubic_root(Root which, const CubicBox& box) {
   using certified::Interval;
+  const Cubic<Interval>& c = box.c;
   if (!c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return Interval(0.0, Interval::inf);
-  const RootStart start = root_start(which, c);
-  double lo = std::max(root_end(which, false, c, start), 0.0), hi = root_end(which, true, c, start);
+  const RootStart start = root_start(which, box);
+  double lo = std::max(root_end(which, false, box, start), 0.0), hi = root_end(which, true, box, start);
   // A double root λ_1 = λ_2 leaves λ_1's lower end to the fallback (p > 0 on
   // both sides of it), λ_2 = λ_3 λ_3's upper end. The trace gives them:
   // λ_1 + λ_2 = c_2 - λ_3 with λ_1 >= λ_2, so λ_1 >= (c_2 - λ_3) / 2, and
   // likewise λ_3 <= (c_2 - λ_1) / 2.
   if (which == Root::largest && lo <= c.c2.lo / 3.0) {
-    const double l3_hi = root_end(Root::smallest, true, c, root_start(Root::smallest, c));
+    const double l3_hi = root_end(Root::smallest, true, box, root_start(Root::smallest, box));
     lo = std::max(lo, ((Interval(c.c2.lo) - Interval(l3_hi)) * Interval(0.5)).lo);
   } else if (which == Root::smallest && hi >= c.c2.hi / 3.0) {
-    const double l1_lo = root_end(Root::largest, false, c, root_start(Root::largest, c));
+    const double l1_lo = root_end(Root::largest, false, box, root_start(Root::largest, box));
     hi = std::min(hi, ((Interval(c.c2.hi) - Interval(l1_lo)) * Interval(0.5)).hi);
   }
   // Ends that contradict each other cannot come from a family of real-rooted
@@ -190,19 +225,20 @@ inline certified::Interval cubic_root(Root which, const Cubic<certified::Interva
 //    between λ_2 and λ_1, so p'(λ_1) >= (l.lo - s)(l.lo - u_3);
 //  * λ_3: t > l.hi with p(t) > 0 and t below λ_1's proved lower end l_1 lies
 //    between λ_3 and λ_2, so p'(λ_3) >= (l_1 - l.hi)(t - l.hi).
-inline certified::Interval root_slope(Root which, const Cubic<certified::Interval>& c, const certified::Interval& l) {
+inline certified::Interval root_slope(Root which, const CubicBox& box, const certified::Interval& l) {
   using certified::Interval;
+  const Cubic<Interval>& c = box.c;
   const Interval natural = cubic_slope(c, l);
   if (natural.lo > 0.0 || !l.finite() || !c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return natural;
   const bool largest = which == Root::largest;
   // The other root's proved end, and the gap to this root's end.
-  const double other = largest ? root_end(Root::smallest, true, c, root_start(Root::smallest, c))
-                               : root_end(Root::largest, false, c, root_start(Root::largest, c));
+  const double other = largest ? root_end(Root::smallest, true, box, root_start(Root::smallest, box))
+                               : root_end(Root::largest, false, box, root_start(Root::largest, box));
   const double end = largest ? l.lo : l.hi;
   if (!(largest ? other < end : end < other)) return natural;
   for (const double f : {0.5, 0.125, 1.0 / 32.0}) {
     const double at = end + (other - end) * f;  // between the two ends
-    const Interval pa = cubic_value(c, Interval(at));
+    const Interval pa = box.value(Interval(at));
     if (largest ? pa.hi < 0.0 : pa.lo > 0.0) {
       const Interval gap_other = largest ? Interval(end) - Interval(other) : Interval(other) - Interval(end);
       const Interval gap_point = largest ? Interval(end) - Interval(at) : Interval(at) - Interval(end);
@@ -310,6 +346,7 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
   }
   out.jets = bt;
   out.has_jets = true;
+  const CubicBox box(out.coefficients, vm, out.dx, out.dy, dx, dy);
   // p′ over B from Δ's second-order centred form, asked only where
   // root_slope fails (a few multiplications of the jets at hand).
   double discriminant_slope = -1.0;  // not computed yet
@@ -323,8 +360,8 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
     return discriminant_slope > 0.0 ? Interval(std::max(pm.lo, discriminant_slope), std::max(pm.hi, discriminant_slope)) : pm;
   };
   const auto root = [&](Root which) {
-    const Interval l0 = cubic_root(which, out.coefficients);
-    const Interval pm = with_discriminant(root_slope(which, out.coefficients, l0));
+    const Interval l0 = cubic_root(which, box);
+    const Interval pm = with_discriminant(root_slope(which, box, l0));
     if (pm.contains_zero()) return l0;
     // λ and its gradient at m (thin coefficients), and its Hessian over B.
     const Interval lmv = cubic_root(which, vm);
@@ -332,10 +369,10 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
     return value(lm, root_jet(bt, l0, out.coefficients, pm));  // the jet's value is l0
   };
   out.largest = root(Root::largest);
-  out.slope_largest = with_discriminant(root_slope(Root::largest, out.coefficients, out.largest));
+  out.slope_largest = with_discriminant(root_slope(Root::largest, box, out.largest));
   if (smallest) {
     out.smallest = root(Root::smallest);
-    out.slope_smallest = with_discriminant(root_slope(Root::smallest, out.coefficients, out.smallest));
+    out.slope_smallest = with_discriminant(root_slope(Root::smallest, box, out.smallest));
   }
   return out;
 }
@@ -440,9 +477,10 @@ std::pair<certified::Interval, certified::Interval> roots_first_order(const F& c
     over->v = tighter(over->v, at_m + over->dx * dx + over->dy * dy);
   }
   const Cubic<Interval> c = values(b);
+  const CubicBox box(c, vm, {b.c2.dx, b.c1.dx, b.c0.dx}, {b.c2.dy, b.c1.dy, b.c0.dy}, dx, dy);
   const auto root = [&](Root which) {
-    const Interval l0 = cubic_root(which, c);
-    const Interval pm = root_slope(which, c, l0);
+    const Interval l0 = cubic_root(which, box);
+    const Interval pm = root_slope(which, box, l0);
     if (pm.contains_zero()) return l0;
     const G lb = root_jet(b, l0, c, pm);
     return tighter(l0, cubic_root(which, vm) + lb.dx * dx + lb.dy * dy);

@@ -197,6 +197,53 @@ TEST(ThreeRprConditioning, CloseRootsAreSeparatedByTheDiscriminant) {
   EXPECT_GE(by_discriminant, 1);
 }
 
+// The coefficients of one matrix move together: over a box, p(μ) in its
+// mean-value form in (x, y) (CubicBox) is far tighter than p(μ) from the
+// coefficients' independent enclosures. M(x, y) = diag(2 + x, 1.9 + y, 1) R
+// again (λ₁ ≈ 4, λ₂ ≈ 3.61): the form encloses p(μ) at every point of the box,
+// and λ₁ from it encloses every point's root and is narrower than from the
+// coefficients alone (the coefficients alone: cubics with closer roots).
+TEST(ThreeRprConditioning, CorrelatedCoefficientsNarrowTheRoots) {
+  using certified::Interval;
+  using criteria::detail::Root;
+  using G = certified::Grad<Interval>;
+  const auto cubic_of = [](const auto& x, const auto& y) {
+    using T = std::decay_t<decltype(x)>;
+    const double rot[3][3] = {{0.6, -0.8, 0.0}, {0.48, 0.36, -0.8}, {0.64, 0.48, 0.6}};
+    const T d[3] = {x + 2.0, y + 1.9, T(1.0)};
+    T a[3][3];
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) a[i][j] = d[i] * rot[i][j];
+    }
+    const T w[3] = {T(1.0), T(1.0), T(1.0)};
+    return criteria::detail::gram_invariants(a, w);
+  };
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int narrower = 0;
+  for (const double h : {0.001, 0.005, 0.02, 0.05}) {
+    const Interval x(0.01 - h, 0.01 + h), y(-0.02 - h, -0.02 + h);
+    const auto natural = cubic_of(x, y);
+    const auto g = cubic_of(G::variable_x(x), G::variable_y(y));
+    const criteria::detail::CubicBox box(natural, cubic_of(Interval(0.01), Interval(-0.02)), {g.c2.dx, g.c1.dx, g.c0.dx},
+                                         {g.c2.dy, g.c1.dy, g.c0.dy}, Interval(-h, h), Interval(-h, h));
+    const Interval alone = criteria::detail::cubic_root(Root::largest, natural);
+    const Interval l1 = criteria::detail::cubic_root(Root::largest, box);
+    if (l1.width() < 0.5 * alone.width()) ++narrower;
+    for (int k = 0; k < 300; ++k) {
+      const double px = 0.01 + h * u(rng), py = -0.02 + h * u(rng);
+      const auto c = cubic_of(px, py);
+      const double r1 = criteria::detail::cubic_root(Root::largest, c);
+      EXPECT_TRUE(l1.contains(r1)) << h << ": " << r1 << " not in [" << l1.lo << ", " << l1.hi << "]";
+      for (const double mu : {r1, 3.0, 3.8, 4.2}) {
+        const double p = criteria::detail::cubic_value(c, mu);
+        EXPECT_TRUE(box.value(Interval(mu)).contains(p)) << h << " at " << mu;
+      }
+    }
+  }
+  EXPECT_GE(narrower, 2);
+}
+
 TEST(ThreeRprConditioning, SurrogatesAgreeWithTheEvaluationsSvd) {
   for (const char* name : {"three_rpr_paminsa_phi25_r200", "three_rpr_prismatic"}) {
     const auto f = io::load_mechanism(dataset(name));
