@@ -129,13 +129,20 @@ def main():
         "where the level curve meets W's boundary tangentially (the field has a square-root singularity there) "
         "and at the base joints, where every level curve ends; the charts trace both like any curve (their cells "
         "square in the charts' own units, the base charts of radius R/6). What is left is the traced cells' own "
-        "cost: about one cell per cover leaf along each curve (2 400–4 900 for the DexTAR), each with a few "
-        "certified root brackets and interval jets. The condition numbers of the 3-RPR and 3-PRP (roots of a "
-        "cubic) decide a third of their cells with a first-order enclosure and trace cells the natural form of "
-        "p'(λ) could not call smooth, from the roots' separation (docs/theory/level_sets.md, 3-RPR).",
+        "cost: about one cell per cover leaf along each curve (2 000–4 200 for the DexTAR, 10–20 % fewer since "
+        "a chart's edge towards the rest is its window's edge instead of a cut), each with a few certified root "
+        "brackets and interval jets; and, in the first leg's band chart, where both legs are nearly stretched, a "
+        "pile of small cells along the second leg's circle r₂ = R₂ (about 800 of the 3 800 of (−1, +1), "
+        "α ≤ 40°), where the field is singular too and the chart's coordinates do not smooth it. The condition "
+        "numbers of the 3-RPR and 3-PRP (roots of a cubic) decide a third of their cells with a first-order "
+        "enclosure, trace cells the natural form of p'(λ) could not call smooth, from the roots' separation, "
+        "and prove the roots' ends with p(μ) in its mean-value form in (x, y) (the coefficients move together) "
+        "(docs/theory/level_sets.md, 3-RPR).",
         "",
         "Compare rows of one run: on this shared machine the same code's times drift between sessions by up to "
-        "1.6× (the five-bar rows of 2026-12-02 and 2026-12-03, code unchanged), more than within a run.",
+        "1.6× (the five-bar rows of 2026-12-02 and 2026-12-03, code unchanged), more than within a run. The "
+        "rows of the two condition-number cases (`three_rpr_paminsa_phi0_kappa4`, `three_prp_example_kappa2`) "
+        "come from a run after the mean-value form, the others from one before it (which they do not use).",
     ]
     update_report(a.report, HEADING, "\n".join(lines))
     print(f"level_sets.py: wrote {n} cases to {a.report}")
