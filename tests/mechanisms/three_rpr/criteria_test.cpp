@@ -155,6 +155,19 @@ TEST(ThreeRprConditioning, RootSlopesEncloseAndSeparate) {
   EXPECT_GE(separated, 2);
 }
 
+// The cubic of MᵀM for M(x, y) = diag(2 + x, 1.9 + y, 1) R (R orthogonal):
+// at the origin λ = 4, 3.61 and 1, λ₁ and λ₂ close.
+template <class T> criteria::detail::Cubic<T> close_roots_cubic(const T& x, const T& y) {
+  const double rot[3][3] = {{0.6, -0.8, 0.0}, {0.48, 0.36, -0.8}, {0.64, 0.48, 0.6}};
+  const T d[3] = {x + 2.0, y + 1.9, T(1.0)};
+  T a[3][3];
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) a[i][j] = d[i] * rot[i][j];
+  }
+  const T w[3] = {T(1.0), T(1.0), T(1.0)};
+  return criteria::detail::gram_invariants(a, w);
+}
+
 // Close roots over a box: M(x, y) = diag(2 + x, 1.9 + y, 1) R, λ₁ ≈ 4 and
 // λ₂ ≈ 3.61. Over a box of half-width 0.005 the roots' enclosures from the
 // coefficients overlap (neither the natural form nor root_slope proves
@@ -163,17 +176,7 @@ TEST(ThreeRprConditioning, RootSlopesEncloseAndSeparate) {
 TEST(ThreeRprConditioning, CloseRootsAreSeparatedByTheDiscriminant) {
   using certified::Interval;
   using criteria::detail::Root;
-  const auto cubic_of = [](const auto& x, const auto& y) {
-    using T = std::decay_t<decltype(x)>;
-    const double rot[3][3] = {{0.6, -0.8, 0.0}, {0.48, 0.36, -0.8}, {0.64, 0.48, 0.6}};
-    const T d[3] = {x + 2.0, y + 1.9, T(1.0)};
-    T a[3][3];
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) a[i][j] = d[i] * rot[i][j];
-    }
-    const T w[3] = {T(1.0), T(1.0), T(1.0)};
-    return criteria::detail::gram_invariants(a, w);
-  };
+  const auto cubic_of = [](const auto& x, const auto& y) { return close_roots_cubic(x, y); };
   // R is orthogonal: the roots at the centre are 4, 3.61 and 1, Δ = Π (λ_i − λ_j)².
   const double delta = (4.0 - 3.61) * (4.0 - 3.61) * 9.0 * (3.61 - 1.0) * (3.61 - 1.0);
   EXPECT_NEAR(criteria::detail::discriminant(cubic_of(0.0, 0.0)), delta, 1e-12 * 100.0);
@@ -207,17 +210,7 @@ TEST(ThreeRprConditioning, CorrelatedCoefficientsNarrowTheRoots) {
   using certified::Interval;
   using criteria::detail::Root;
   using G = certified::Grad<Interval>;
-  const auto cubic_of = [](const auto& x, const auto& y) {
-    using T = std::decay_t<decltype(x)>;
-    const double rot[3][3] = {{0.6, -0.8, 0.0}, {0.48, 0.36, -0.8}, {0.64, 0.48, 0.6}};
-    const T d[3] = {x + 2.0, y + 1.9, T(1.0)};
-    T a[3][3];
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) a[i][j] = d[i] * rot[i][j];
-    }
-    const T w[3] = {T(1.0), T(1.0), T(1.0)};
-    return criteria::detail::gram_invariants(a, w);
-  };
+  const auto cubic_of = [](const auto& x, const auto& y) { return close_roots_cubic(x, y); };
   std::mt19937 rng(4);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   int narrower = 0;
