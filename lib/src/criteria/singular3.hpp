@@ -72,6 +72,11 @@ template <class S> S cubic_value(const Cubic<S>& c, const S& mu) { return ((mu -
 template <class S> S cubic_slope(const Cubic<S>& c, const S& mu) { return (3.0 * mu - 2.0 * c.c2) * mu + c.c1; }
 template <class S> S cubic_curvature(const Cubic<S>& c, const S& mu) { return 6.0 * mu - 2.0 * c.c2; }
 
+inline certified::Interval tighter(const certified::Interval& a, const certified::Interval& b) {
+  const certified::Interval both = certified::intersect(a, b);
+  return both.lo <= both.hi ? both : a;
+}
+
 // The cubics of a box: coefficients c enclosed there and, when known, their
 // values at the box's centre m and gradients over the box, for p(μ) in its
 // mean-value form in (x, y):
@@ -98,8 +103,7 @@ struct CubicBox {
   certified::Interval value(const certified::Interval& mu) const {
     const certified::Interval natural = cubic_value(c, mu);
     if (!has_gradients) return natural;
-    const certified::Interval both = certified::intersect(natural, cubic_value(m, mu) + moved(mu));
-    return both.lo <= both.hi ? both : natural;
+    return tighter(natural, cubic_value(m, mu) + moved(mu));
   }
 };
 
@@ -276,10 +280,6 @@ struct BoxRoot {
   bool has_jets = false;
   const certified::Interval& operator[](Root which) const { return which == Root::largest ? largest : smallest; }
 };
-inline certified::Interval tighter(const certified::Interval& a, const certified::Interval& b) {
-  const certified::Interval both = certified::intersect(a, b);
-  return both.lo <= both.hi ? both : a;
-}
 // The discriminant of p, Δ = c₂²c₁² − 4c₁³ − 4c₂³c₀ + 18c₂c₁c₀ − 27c₀²
 // = Π (λ_i − λ_j)² over the pairs: positive exactly where the three roots are
 // distinct. As p′(λ₁)² = Δ / (λ₂ − λ₃)² and p′(λ₃)² = Δ / (λ₁ − λ₂)², with
