@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace pkmws::certified {
 
@@ -169,15 +170,17 @@ template <class S> Jet<S> operator*(const Jet<S>& a, const Jet<S>& b) {
           a.dxy * b.v + a.dx * b.dy + a.dy * b.dx + a.v * b.dxy,
           a.dyy * b.v + S(2.0) * (a.dy * b.dy) + a.v * b.dyy};
 }
-template <class S> Jet<S> operator*(double c, const Jet<S>& a) {
-  const S k(c);
+// With a constant (a double, or an S: a derived constant enclosed with its
+// rounding), only the terms that are not zero.
+template <class S> using Const = std::type_identity_t<S>;
+template <class S> Jet<S> operator*(const Const<S>& k, const Jet<S>& a) {
   return {k * a.v, k * a.dx, k * a.dy, k * a.dxx, k * a.dxy, k * a.dyy};
 }
-template <class S> Jet<S> operator*(const Jet<S>& a, double c) { return c * a; }
-template <class S> Jet<S> operator+(const Jet<S>& a, double c) { Jet<S> r = a; r.v = a.v + S(c); return r; }
-template <class S> Jet<S> operator+(double c, const Jet<S>& a) { return a + c; }
-template <class S> Jet<S> operator-(const Jet<S>& a, double c) { Jet<S> r = a; r.v = a.v - S(c); return r; }
-template <class S> Jet<S> operator-(double c, const Jet<S>& a) { return (-a) + c; }
+template <class S> Jet<S> operator*(const Jet<S>& a, const Const<S>& c) { return c * a; }
+template <class S> Jet<S> operator+(const Jet<S>& a, const Const<S>& c) { Jet<S> r = a; r.v = a.v + c; return r; }
+template <class S> Jet<S> operator+(const Const<S>& c, const Jet<S>& a) { return a + c; }
+template <class S> Jet<S> operator-(const Jet<S>& a, const Const<S>& c) { Jet<S> r = a; r.v = a.v - c; return r; }
+template <class S> Jet<S> operator-(const Const<S>& c, const Jet<S>& a) { return (-a) + c; }
 
 /// g(a) for a scalar function g with g(a.v) = g0, g'(a.v) = g1, g''(a.v) = g2 (chain rule).
 template <class S> Jet<S> compose(const Jet<S>& a, const S& g0, const S& g1, const S& g2) {
@@ -196,8 +199,8 @@ template <class S> Jet<S> reciprocal(const Jet<S>& a) {
   return compose(a, r, -(r * r), S(2.0) * (r * r * r));
 }
 template <class S> Jet<S> operator/(const Jet<S>& a, const Jet<S>& b) { return a * reciprocal(b); }
-template <class S> Jet<S> operator/(const Jet<S>& a, double c) { return a / Jet<S>(c); }
-template <class S> Jet<S> operator/(double c, const Jet<S>& a) { return c * reciprocal(a); }
+template <class S> Jet<S> operator/(const Jet<S>& a, const Const<S>& c) { return (S(1.0) / c) * a; }
+template <class S> Jet<S> operator/(const Const<S>& c, const Jet<S>& a) { return c * reciprocal(a); }
 template <class S> Jet<S> sqrt(const Jet<S>& a) {
   using std::sqrt;
   const S r = sqrt(a.v);
@@ -238,18 +241,18 @@ template <class S> Grad<S> operator-(const Grad<S>& a) { return {-a.v, -a.dx, -a
 template <class S> Grad<S> operator*(const Grad<S>& a, const Grad<S>& b) {
   return {a.v * b.v, a.dx * b.v + a.v * b.dx, a.dy * b.v + a.v * b.dy};
 }
-template <class S> Grad<S> operator*(double c, const Grad<S>& a) { const S k(c); return {k * a.v, k * a.dx, k * a.dy}; }
-template <class S> Grad<S> operator*(const Grad<S>& a, double c) { return c * a; }
-template <class S> Grad<S> operator+(const Grad<S>& a, double c) { Grad<S> r = a; r.v = a.v + S(c); return r; }
-template <class S> Grad<S> operator+(double c, const Grad<S>& a) { return a + c; }
-template <class S> Grad<S> operator-(const Grad<S>& a, double c) { Grad<S> r = a; r.v = a.v - S(c); return r; }
-template <class S> Grad<S> operator-(double c, const Grad<S>& a) { return (-a) + c; }
+template <class S> Grad<S> operator*(const Const<S>& k, const Grad<S>& a) { return {k * a.v, k * a.dx, k * a.dy}; }
+template <class S> Grad<S> operator*(const Grad<S>& a, const Const<S>& c) { return c * a; }
+template <class S> Grad<S> operator+(const Grad<S>& a, const Const<S>& c) { Grad<S> r = a; r.v = a.v + c; return r; }
+template <class S> Grad<S> operator+(const Const<S>& c, const Grad<S>& a) { return a + c; }
+template <class S> Grad<S> operator-(const Grad<S>& a, const Const<S>& c) { Grad<S> r = a; r.v = a.v - c; return r; }
+template <class S> Grad<S> operator-(const Const<S>& c, const Grad<S>& a) { return (-a) + c; }
 template <class S> Grad<S> compose(const Grad<S>& a, const S& g0, const S& g1) { return {g0, g1 * a.dx, g1 * a.dy}; }
 template <class S> Grad<S> sqr(const Grad<S>& a) { return compose(a, sqr(a.v), S(2.0) * a.v); }
 template <class S> Grad<S> reciprocal(const Grad<S>& a) { const S r = S(1.0) / a.v; return compose(a, r, -(r * r)); }
 template <class S> Grad<S> operator/(const Grad<S>& a, const Grad<S>& b) { return a * reciprocal(b); }
-template <class S> Grad<S> operator/(const Grad<S>& a, double c) { return a / Grad<S>(c); }
-template <class S> Grad<S> operator/(double c, const Grad<S>& a) { return c * reciprocal(a); }
+template <class S> Grad<S> operator/(const Grad<S>& a, const Const<S>& c) { return (S(1.0) / c) * a; }
+template <class S> Grad<S> operator/(const Const<S>& c, const Grad<S>& a) { return c * reciprocal(a); }
 template <class S> Grad<S> sqrt(const Grad<S>& a) {
   using std::sqrt;
   const S r = sqrt(a.v);
@@ -282,5 +285,12 @@ inline Jet<Interval> abs(const Jet<Interval>& a) {
   const Interval w = Interval::whole();
   return {abs(a.v), hull(a.dx, -a.dx), hull(a.dy, -a.dy), w, w, w};
 }
+
+/// The scalar a value type is built on: double or Interval itself, S for
+/// Jet<S> and Grad<S> (for constants derived in a field's formulas).
+template <class T> struct ScalarOf { using type = T; };
+template <class S> struct ScalarOf<Jet<S>> { using type = S; };
+template <class S> struct ScalarOf<Grad<S>> { using type = S; };
+template <class T> using scalar_t = typename ScalarOf<T>::type;
 
 }  // namespace pkmws::certified

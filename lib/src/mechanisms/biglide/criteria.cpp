@@ -39,20 +39,21 @@ struct BiglideVelocityRatio {
     using certified::sqr;
     using certified::sqrt;
     using std::sqrt;
+    using S = certified::scalar_t<T>;
     Parts<T> r;
-    r.h1 = y + T(b);
-    r.w1sq = T(l3 * l3) - sqr(r.h1);
+    r.h1 = y + S(b);
+    r.w1sq = S(l3 * l3) - sqr(r.h1);
     r.w1 = sqrt(max(r.w1sq, 0.0));
     const T& w1 = r.w1;
-    r.dq1 = T(-b1) * r.h1 / w1;
-    const T dvx = T(b1) * r.h1 / w1;
-    const T jy = T(-b) - T(b1 * m10) * w1 + T(m11) * r.h1;
-    const T djx = r.dq1 + T(m00) * dvx + T(m01);
-    const T djy = T(m10) * dvx + T(m11);
-    r.h2 = T(b) - jy;
-    r.w2sq = T(l2 * l2) - sqr(r.h2);
+    r.dq1 = S(-b1) * r.h1 / w1;
+    const T dvx = S(b1) * r.h1 / w1;
+    const T jy = S(-b) - S(b1 * m10) * w1 + S(m11) * r.h1;
+    const T djx = r.dq1 + S(m00) * dvx + S(m01);
+    const T djy = S(m10) * dvx + S(m11);
+    r.h2 = S(b) - jy;
+    r.w2sq = S(l2 * l2) - sqr(r.h2);
     r.w2 = sqrt(max(r.w2sq, 0.0));
-    r.dq2 = djx + T(b2) * r.h2 * djy / r.w2;
+    r.dq2 = djx + S(b2) * r.h2 * djy / r.w2;
     (void)x;
     return r;
   }
@@ -72,8 +73,9 @@ struct BiglideVelocityRatio {
   // Slider 2's position q_2 = J_x + b_2 w_2 for the tool at (x, y), J_x = x +
   // b_1 w_1 (1 - M00) + M01 h_1 (J = S_1 + M (T - S_1), S_1 = (x + b_1 w_1, -B)).
   template <class T> T slider2(const T& x, const Parts<T>& p) const {
-    const T jx = x + T(b1 * (1.0 - m00)) * p.w1 + T(m01) * p.h1;
-    return jx + T(b2) * p.w2;
+    using S = certified::scalar_t<T>;
+    const T jx = x + S(b1 * (1.0 - m00)) * p.w1 + S(m01) * p.h1;
+    return jx + S(b2) * p.w2;
   }
   // Box ⊆ workspace: the chain closes with both sliders inside their strokes.
   CellState within(const Box& box) const {
@@ -151,10 +153,11 @@ struct BiglideChain {
 struct BiglideRealSingular {
   BiglideVelocityRatio legs;
   template <class T> T eval(const T& x, const T& y) const {
+    using S = certified::scalar_t<T>;
     const auto p = legs.parts(x, y);
     const double b1 = BiglideVelocityRatio::b1, b2 = BiglideVelocityRatio::b2;
-    return p.w2 * (T(legs.m00 * b1) * p.h1 + T(legs.m01) * p.w1) +
-           T(b2) * p.h2 * (T(legs.m10 * b1) * p.h1 + T(legs.m11) * p.w1);
+    return p.w2 * (S(legs.m00 * b1) * p.h1 + S(legs.m01) * p.w1) +
+           S(b2) * p.h2 * (S(legs.m10 * b1) * p.h1 + S(legs.m11) * p.w1);
   }
   CellState domain(const Box& b) const { return legs.domain(b); }
 };

@@ -37,8 +37,9 @@ struct FiveBarCosEps {
     }
   }
   // Leg i at C = (x, y): w = C - A_i and the distal vector u = C - B_i.
-  // Derived constants in T arithmetic, so that interval evaluations enclose
-  // their rounding too.
+  // Derived constants in the scalar arithmetic S of T, so that interval
+  // evaluations enclose their rounding too (and jets carry no derivatives of
+  // constants).
   template <class T> struct Leg {
     T wx, wy, ux, uy;
   };
@@ -47,11 +48,12 @@ struct FiveBarCosEps {
     using certified::sqr;
     using certified::sqrt;
     using std::sqrt;
-    const T p = T(l1[i]), q = T(l2[i]);
+    using S = certified::scalar_t<T>;
+    const S p = S(l1[i]), q = S(l2[i]);
     Leg<T> g{x - base[i].x, y - base[i].y, T(0.0), T(0.0)};
     const T r2 = sqr(g.wx) + sqr(g.wy);
     const T inv2r2 = 0.5 / r2;
-    const T one_minus_a = 0.5 - (p - q) * (p + q) * inv2r2;
+    const T one_minus_a = 0.5 - ((p - q) * (p + q)) * inv2r2;
     const T d = (sqr(p + q) - r2) * (r2 - sqr(p - q));
     const T b = sqrt(max(d, 0.0)) * inv2r2;
     g.ux = one_minus_a * g.wx + s[i] * (b * g.wy);
@@ -60,7 +62,8 @@ struct FiveBarCosEps {
   }
   template <class T> T cos_eps(const T& x, const T& y) const { return cos_eps_of(leg(0, x, y), leg(1, x, y)); }
   template <class T> T cos_eps_of(const Leg<T>& g0, const Leg<T>& g1) const {
-    return (g0.ux * g1.ux + g0.uy * g1.uy) / (T(l2[0]) * T(l2[1]));
+    using S = certified::scalar_t<T>;
+    return (g0.ux * g1.ux + g0.uy * g1.uy) / (S(l2[0]) * S(l2[1]));
   }
   // det A = u_1 x u_2: zero where the distal links are aligned (type 2,
   // [Briot]: A's rows are the distal directions; derived).
@@ -168,7 +171,8 @@ struct FiveBarChart {
     const T th = c * u;
     const T ct = cos(th), st = sin(th);
     const T ex = ct * d.x - st * d.y, ey = ct * d.y + st * d.x;
-    const T p = T(plane.l1[k]), q = T(plane.l2[k]);
+    using S = certified::scalar_t<T>;
+    const S p = S(plane.l1[k]), q = S(plane.l2[k]);
     T r, alpha, beta;  // alpha = (1 - a) r, beta = √D / (2r)
     if (at_base) {  // l1 = l2
       r = v;
@@ -280,6 +284,14 @@ std::optional<CriterionFields::Charts> FiveBarCosEps::charts(const geometry::Reg
     if (at_base[k]) rest = rest.subtract(geometry::disk(base[k], rho_base[k]));
   }
   out.rest = std::move(rest);
+  // The same set as signed disks: W's annuli, inside the bands' inner
+  // circles, outside the base disks.
+  for (std::size_t k = 0; k < 2; ++k) {
+    out.rest_disks.push_back({base[k], R[k], true});
+    if (l1[k] != l2[k]) out.rest_disks.push_back({base[k], std::abs(l1[k] - l2[k]), false});
+    if (band[k]) out.rest_disks.push_back({base[k], rho[k], true});
+    if (at_base[k]) out.rest_disks.push_back({base[k], rho_base[k], false});
+  }
   out.rest_test = [self = *this, band, rho, at_base, rho_base](const Box& b) {
     CellState c = self.within(b);
     if (c == CellState::outside) return c;

@@ -40,11 +40,12 @@ struct MomaTransmission {
   };
   template <class T> Leg<T> leg(std::size_t i, const T& x, const T& y) const {
     using certified::sqr;
+    using S = certified::scalar_t<T>;
     const T wx = x - ref[i].x, wy = y - ref[i].y;
     Leg<T> g;
-    g.along = T(a[i].x) * wx + T(a[i].y) * wy;
-    g.across = T(n[i].x) * wx + T(n[i].y) * wy;
-    g.r2 = (T(l[i]) - g.across) * (T(l[i]) + g.across);
+    g.along = S(a[i].x) * wx + S(a[i].y) * wy;
+    g.across = S(n[i].x) * wx + S(n[i].y) * wy;
+    g.r2 = (S(l[i]) - g.across) * (S(l[i]) + g.across);
     return g;
   }
   // The rod vectors u_i = P - S_i (x parts, y parts).
@@ -63,8 +64,9 @@ struct MomaTransmission {
   }
   // cos ε = (P - S_1).(P - S_2) / (l_1 l_2).
   template <class T> T cos_eps(const T& x, const T& y) const {
+    using S = certified::scalar_t<T>;
     const auto [ux, uy] = rods(x, y);
-    return (ux[0] * ux[1] + uy[0] * uy[1]) / (T(l[0]) * T(l[1]));
+    return (ux[0] * ux[1] + uy[0] * uy[1]) / (S(l[0]) * S(l[1]));
   }
   // det A = u_1 x u_2 of the rod vectors (derived from [Vasilic] eq. 3-6 as
   // cos_eps): zero where the rods are aligned (type 2).
