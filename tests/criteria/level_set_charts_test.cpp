@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iomanip>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -188,3 +189,46 @@ TEST(LevelSetCharts, ChartedBoundsMeetThePlanesAndHoldADenseGrid) {
 }
 
 }  // namespace
+
+TEST(LevelSetCharts, TheRestsSignedDisksAreTheRest) {
+  // rest_disks must describe rest exactly: the level sets take the areas of
+  // boxes across rest's boundary from them in closed form. Boxes at random
+  // points of W's bounding box, of sizes 1e-4 to 0.05: the closed form's
+  // enclosure holds CGAL's exact area of box ∩ rest.
+  std::mt19937 rng(17);
+  for (const auto& f : {five_bar(0.125, 0.2, 0.2, 0.2, 0.2, 1, -1, 40.0), five_bar(0.1, 0.25, 0.2, 0.22, 0.27, -1, 1, 40.0),
+                        five_bar(0.08, 0.21, 0.21, 0.26, 0.26, 1, 1, 40.0), five_bar(0.009, 0.2, 0.2, 0.2, 0.2, 1, -1, 40.0)}) {
+    const geometry::Region w = f.model->workspace();
+    const auto charts = f.model->capability<criteria::CriterionFields>()->charts(w);
+    ASSERT_TRUE(charts);
+    ASSERT_FALSE(charts->rest_disks.empty());
+    const Box bb = w.bbox();
+    std::uniform_real_distribution<double> ux(bb.min.x, bb.max.x), uy(bb.min.y, bb.max.y), lg(-4.0, -1.3),
+        turn(0.0, 6.283185307179586);
+    std::uniform_int_distribution<std::size_t> which(0, charts->rest_disks.size() - 1);
+    int decided = 0, partial = 0;
+    for (int k = 0; k < 300; ++k) {
+      const double s = std::pow(10.0, lg(rng));
+      Point c{ux(rng), uy(rng)};
+      if (k % 2 == 1) {  // at a point of one of the circles
+        const certified::SignedDisk& d = charts->rest_disks[which(rng)];
+        const double t = turn(rng);
+        c = {d.centre.x + d.radius * std::cos(t) - 0.5 * s, d.centre.y + d.radius * std::sin(t) - 0.5 * s};
+      }
+      const std::vector<Point> box{{c.x, c.y}, {c.x + s, c.y}, {c.x + s, c.y + s}, {c.x, c.y + s}};
+      const auto a = certified::area_in_disks(box, charts->rest_disks);
+      if (!a) continue;
+      ++decided;
+      const double exact = charts->rest.intersect(geometry::polygon(box)).area();
+      if (exact > 0.0 && exact < s * s * (1.0 - 1e-9)) ++partial;
+      // CGAL's area() sums the exact boundary's curves rounded to doubles: ~1e-16 of W's size along the box's edges.
+      const double slack = 1e-14 * bb.width() * s;
+      EXPECT_LE(a->lo, exact + slack) << f.name << " box " << k << std::setprecision(17) << " [" << a->lo << ", " << a->hi
+                                      << "] exact " << exact;
+      EXPECT_GE(a->hi, exact - slack) << f.name << " box " << k;
+      EXPECT_LE(a->hi - a->lo, 1e-12 * bb.width() * bb.width()) << f.name << " box " << k;  // rounding at W's scale
+    }
+    EXPECT_GE(decided, 200) << f.name;
+    EXPECT_GE(partial, 25) << f.name;  // across rest's boundary
+  }
+}

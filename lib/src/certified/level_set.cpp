@@ -988,9 +988,27 @@ void deepen(Pass& pass, const std::vector<Constraint>& cs, const WithinTest& wit
   pass.stopped = pass.stopped || budget.stopped();
 }
 
+// The area of W in pieces across W's boundary, disjoint: in closed form where
+// W is a set of signed disks (`disks` non-empty, area_in_disks), the pieces it
+// cannot decide clipped to W exactly.
+Interval area_within(const std::vector<std::vector<Point>>& pieces, const Region& within,
+                     const std::vector<SignedDisk>& disks) {
+  Interval sum(0.0);
+  std::vector<std::vector<Point>> left;
+  for (const std::vector<Point>& p : pieces) {
+    const std::optional<Interval> a = disks.empty() ? std::nullopt : area_in_disks(p, disks);
+    if (a) sum = sum + *a;
+    else left.push_back(p);
+  }
+  // The pieces lie in distinct cells: united by edge cancellation.
+  if (!left.empty()) sum = sum + Interval(within.intersect(polygons_region(left)).area());
+  return sum;
+}
+
 // The bounds, pieces and curves of a pass. The pass is not changed: a retry
 // may refine it further and summarise it again.
-LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTest& within_test, const AreaWeight& weight) {
+LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTest& within_test, const AreaWeight& weight,
+                         const std::vector<SignedDisk>& disks) {
   LevelSetResult result;
   const CellCover& cover_result = pass.cover;
   const std::vector<LeafResult>& per_leaf = pass.per_leaf;
@@ -1045,7 +1063,7 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
   // Cells across W's boundary: exact region operations. A traced cell's part
   // of S lies between W ∩ (the cell's side of its inner envelope) and
   // W ∩ (the side of its outer envelope).
-  double straddle_lower = 0.0;
+  Interval straddle(0.0);
   if (!weight.unit()) {
     // A chart's plane: no exact clipping (W is not a region there); its
     // window test should decide every cell, else they count as undecided.
@@ -1057,20 +1075,24 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
     across_inner.clear();
     across_outer.clear();
   }
-  if (!straddle_inside.empty()) straddle_lower = within.intersect(boxes_region(straddle_inside)).area();
-  // The polygons lie in distinct cells: united by edge cancellation.
-  const auto clipped_area = [&](const std::vector<std::vector<Point>>& polygons) {
-    return polygons.empty() ? 0.0 : within.intersect(polygons_region(polygons)).area();
-  };
+  if (!straddle_inside.empty()) {
+    if (disks.empty()) {
+      straddle = Interval(within.intersect(boxes_region(straddle_inside)).area());
+    } else {
+      std::vector<std::vector<Point>> boxes;
+      for (const Box& b : straddle_inside) boxes.push_back({b.min, {b.max.x, b.min.y}, b.max, {b.min.x, b.max.y}});
+      straddle = area_within(boxes, within, disks);
+    }
+  }
   if (!across_inner.empty() || !across_outer.empty()) {
-    const double lo = clipped_area(across_inner), hi = clipped_area(across_outer);
-    traced_lower += lo;
-    traced_upper += std::max(lo, hi);
+    const Interval lo = area_within(across_inner, within, disks), hi = area_within(across_outer, within, disks);
+    traced_lower += lo.lo;
+    traced_upper += std::max(lo.hi, hi.hi);
   }
   result.inner_polygons.insert(result.inner_polygons.end(), across_inner.begin(), across_inner.end());
   // Sums of positive terms: relative rounding ~ n eps; a margin of 1e-13 of the total.
-  const double lower = in_lower + straddle_lower + traced_lower;
-  const double upper = in_lower + straddle_lower + traced_upper + undecided_in;
+  const double lower = in_lower + straddle.lo + traced_lower;
+  const double upper = in_lower + straddle.hi + traced_upper + undecided_in;
   result.region.area_lower = std::max(0.0, lower * (1.0 - 1e-13));
   result.region.area_upper = upper * (1.0 + 1e-13);
   result.undecided_area = undecided_in;
@@ -1145,7 +1167,7 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
     return std::move(bounds);
   };
   Pass pass = first_pass(constraints, within, within_test, options, 0.0);
-  LevelSetResult r = summarize(pass, within, within_test, options.weight);
+  LevelSetResult r = summarize(pass, within, within_test, options.weight, options.within_disks);
   // Retries (not when the deadline stopped the first run: a retry would stop
   // too). When the traced cells dominate the width (the estimate of area or
   // curve length was off), one rerun with a tighter τ. When the undecided
@@ -1168,7 +1190,7 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
   if (r.traced_width > 0.5 * width()) {
     const double tau = r.tolerance_per_length * 0.5 * target() / width();
     const Pass again = first_pass(constraints, within, within_test, options, tau);
-    return final_result(again, summarize(again, within, within_test, options.weight));
+    return final_result(again, summarize(again, within, within_test, options.weight, options.within_disks));
   }
   const int band_depth = std::min(40, options.refine_depth + 4), point_depth = std::min(40, options.refine_depth + 16);
   // Beyond the bands' reach, the probe costs at most a quarter of the first
@@ -1196,7 +1218,7 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
     const double before = r.undecided_area;
     const auto count = static_cast<double>(r.undecided_cells);
     deepen(pass, constraints, within_test, options, levels);
-    r = summarize(pass, within, within_test, options.weight);
+    r = summarize(pass, within, within_test, options.weight, options.within_disks);
     shrink = r.undecided_area > 0.0 ? std::pow(before / r.undecided_area, 1.0 / levels) : inf;
     growth = std::pow(static_cast<double>(r.undecided_cells) / std::max(count, 1.0), 1.0 / levels);
   }

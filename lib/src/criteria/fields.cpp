@@ -241,6 +241,7 @@ certified::LevelSetResult charted_sublevel_set(const std::vector<certified::Cons
   }
   certified::LevelSetOptions o = options;
   o.relative_tolerance = 0.75 * options.relative_tolerance;
+  o.within_disks = charts.rest_disks;
   certified::LevelSetResult total = certified::sublevel_set(cs, charts.rest, charts.rest_test, o);
   const double budget = 0.25 * options.relative_tolerance * std::max(total.region.area_lower, 1e-300) /
                         static_cast<double>(std::max<std::size_t>(1, charts.charts.size()));

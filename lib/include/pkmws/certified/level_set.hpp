@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "pkmws/certified/cell_region.hpp"
+#include "pkmws/certified/disk_area.hpp"
 #include "pkmws/certified/interval.hpp"
 #include "pkmws/geometry/region.hpp"
 #include "pkmws/geometry/types.hpp"
@@ -107,6 +108,12 @@ struct LevelSetOptions {
   /// the pieces for figures (inside_boxes, inner_polygons) cover the part traced
   /// in (x, y) only. Figures ask for false.
   bool charts = true;
+  /// W as an intersection of disks and complements of disks, where it is one
+  /// (empty: not known; it must describe the `within` region given): the
+  /// areas of cells and traced pieces across W's boundary are then enclosed
+  /// in closed form (area_in_disks) instead of clipped to W with exact
+  /// Boolean operations, which stay the fallback where that cannot decide.
+  std::vector<SignedDisk> within_disks;
   /// The area element (a chart's); the bounds are of ∫∫_S ρ. Regions are not
   /// built for a weighted plane (they would be in the chart's coordinates).
   AreaWeight weight;

@@ -117,6 +117,9 @@ struct CriterionFields {
   struct Charts {
     geometry::Region rest;                // W minus the charts' parts (exact)
     certified::WithinTest rest_test;      // boxes against rest (inside only if box ⊆ rest)
+    /// rest as an intersection of disks and complements of disks, when it is
+    /// one (LevelSetOptions::within_disks; empty: not known).
+    std::vector<certified::SignedDisk> rest_disks;
     std::vector<Chart> charts;
   };
   /// `workspace`: W (the exact Mechanism::workspace()).
