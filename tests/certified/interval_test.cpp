@@ -73,4 +73,20 @@ TEST(Interval, DivisionWithZeroInsideTheDivisorOrZeroOverZeroIsTheWholeLine) {
   EXPECT_EQ(h.hi, Interval::inf);
 }
 
+TEST(Interval, AnExactZeroTimesAnySetOfRealsIsZero) {
+  // Unbounded ends stand for unbounded sets of reals, not infinities: 0 * b = 0
+  // for each of them (a structural zero of a jet times a factor unbounded
+  // near a singularity). A factor that only contains 0 stays a product.
+  for (const Interval& b : {Interval::whole(), Interval(1.0, Interval::inf), Interval(-Interval::inf, -2.0), Interval(-3.0, 5.0)}) {
+    const Interval p = Interval(0.0) * b, q = b * Interval(0.0);
+    EXPECT_EQ(p.lo, 0.0);
+    EXPECT_EQ(p.hi, 0.0);
+    EXPECT_EQ(q.lo, 0.0);
+    EXPECT_EQ(q.hi, 0.0);
+  }
+  const Interval r = Interval(0.0, 1.0) * Interval(1.0, Interval::inf);
+  EXPECT_LE(r.lo, 0.0);
+  EXPECT_EQ(r.hi, Interval::inf);
+}
+
 }  // namespace

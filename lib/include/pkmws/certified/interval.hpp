@@ -67,6 +67,10 @@ inline Interval operator-(const Interval& a, const Interval& b) { return interva
 inline Interval operator-(const Interval& a) { return {-a.hi, -a.lo}; }
 [[gnu::always_inline]] inline Interval operator*(const Interval& a, const Interval& b) {
   double lo, hi;
+  // An exact zero times any set of reals is {0} (also where the other factor
+  // is unbounded, which 0 * inf would widen to the whole line): the structural
+  // zeros of jets (derivatives of constants, of x in y) cost nothing.
+  if ((a.lo == 0.0 && a.hi == 0.0) || (b.lo == 0.0 && b.hi == 0.0)) return {0.0, 0.0};
   if (a.lo >= 0.0) {
     if (b.lo >= 0.0) { lo = a.lo * b.lo; hi = a.hi * b.hi; }
     else if (b.hi <= 0.0) { lo = a.hi * b.lo; hi = a.lo * b.hi; }
