@@ -232,3 +232,22 @@ TEST(LevelSetCharts, TheRestsSignedDisksAreTheRest) {
     EXPECT_GE(partial, 25) << f.name;  // across rest's boundary
   }
 }
+
+TEST(LevelSetCharts, OneAndTwoThreadsGiveIdenticalResults) {
+  // The rest, then the charts as parallel tasks (each parallel inside),
+  // added in chart order: 1 and 2 threads agree bit for bit.
+  const auto f = five_bar(0.125, 0.2, 0.2, 0.2, 0.2, -1, 1, 40.0);
+  criteria::LimitedWorkspace r[2];
+  for (int k = 0; k < 2; ++k) {
+    certified::LevelSetOptions o;
+    o.threads = k + 1;
+    r[k] = criteria::limited_workspace(f, criteria::file_limits(f), o);
+  }
+  ASSERT_TRUE(r[0].charted);
+  EXPECT_EQ(r[0].region.area_lower, r[1].region.area_lower);
+  EXPECT_EQ(r[0].region.area_upper, r[1].region.area_upper);
+  EXPECT_EQ(r[0].detail.traced_cells, r[1].detail.traced_cells);
+  EXPECT_EQ(r[0].detail.cell_tests, r[1].detail.cell_tests);
+  ASSERT_EQ(r[0].curves.size(), r[1].curves.size());
+  for (std::size_t i = 0; i < r[0].curves.size(); ++i) EXPECT_EQ(r[0].curves[i], r[1].curves[i]);
+}

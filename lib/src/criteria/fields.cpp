@@ -3,6 +3,7 @@
 #include "pkmws/core/error.hpp"
 
 #include "criteria/singularity_distance.hpp"
+#include "detail/parallel.hpp"
 #include "pkmws/geometry/primitives.hpp"
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <chrono>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 
@@ -245,9 +247,22 @@ certified::LevelSetResult charted_sublevel_set(const std::vector<certified::Cons
   certified::LevelSetResult total = certified::sublevel_set(cs, charts.rest, charts.rest_test, o);
   const double budget = 0.25 * options.relative_tolerance * std::max(total.region.area_lower, 1e-300) /
                         static_cast<double>(std::max<std::size_t>(1, charts.charts.size()));
-  for (std::size_t k = 0; k < charts.charts.size(); ++k) {
+  // The charts are independent once their budget is known: traced in
+  // parallel (each also in parallel inside), added in order.
+  std::vector<certified::LevelSetResult> parts(charts.charts.size());
+  pkmws::detail::ParallelPolicy policy;
+  policy.threads = options.threads;
+  policy.serial_threshold = 0;
+  std::mutex report;  // progress is reported from one thread at a time
+  pkmws::detail::for_each_block(policy, parts.size(), parts.size(), [&](std::size_t k) {
     const CriterionFields::Chart& chart = charts.charts[k];
     certified::LevelSetOptions co = options;
+    if (options.progress) {
+      co.progress = [&](double fraction) {
+        const std::lock_guard lock(report);
+        options.progress(fraction);
+      };
+    }
     co.weight = chart.weight;
     // The charts' parts are thin (a band, a small disk): a coarser cover
     // (16 × 2³ cells over the window) still leaves the curve graphs in its cells.
@@ -271,8 +286,12 @@ certified::LevelSetResult charted_sublevel_set(const std::vector<certified::Cons
     co.relative_tolerance = 1e-15;
     co.absolute_tolerance = budget;
     const geometry::Box w = chart.window;
-    const certified::LevelSetResult r = certified::sublevel_set(
-        chart_cs[k], geometry::rectangle(w), [](const geometry::Box&) { return certified::CellState::inside; }, co);
+    parts[k] = certified::sublevel_set(chart_cs[k], geometry::rectangle(w),
+                                       [](const geometry::Box&) { return certified::CellState::inside; }, co);
+  });
+  for (std::size_t k = 0; k < charts.charts.size(); ++k) {
+    const CriterionFields::Chart& chart = charts.charts[k];
+    const certified::LevelSetResult& r = parts[k];
     total.region.area_lower += std::max(0.0, r.region.area_lower - chart.overlap);
     total.region.area_upper += r.region.area_upper + chart.uncovered;
     total.traced_cells += r.traced_cells;
