@@ -122,8 +122,8 @@ struct Curvature {
 class Tracer {
  public:
   Tracer(const ScalarField& f, double level, const Box& cell, bool swapped, int sgn, double lipschitz, Interval slope,
-         double extent, double tau, const AreaWeight& weight)
-      : f_(f), level_(level), swapped_(swapped), sgn_(sgn), L_(lipschitz), slope_(slope), tau_(tau) {
+         double gv_min, double extent, double tau, const AreaWeight& weight)
+      : f_(f), level_(level), swapped_(swapped), sgn_(sgn), L_(lipschitz), slope_(slope), gv_min_(gv_min), tau_(tau) {
     unit_ = weight.unit();
     c0_ = weight.c0;
     cu_ = swapped ? weight.cy : weight.cx;
@@ -201,6 +201,7 @@ class Tracer {
   int sgn_;
   double L_;
   Interval slope_;  // g' over B' (signed; |g'| <= L)
+  double gv_min_;   // G_v >= gv_min_ > 0 over B'
   double tau_;
   double u0_ = 0, u1_ = 0, v0_ = 0, v1_ = 0, w0_ = 0, w1_ = 0, scale_ = 1;
   bool unit_ = true;                 // ρ = 1
@@ -265,6 +266,15 @@ Tracer::Sample Tracer::solve(double u, double guess) {
     double delta = 2e-16 * scale_;
     const Point p = xy(u, v);
     const Interval e = f_.enclose(make_box(p.x, p.y, p.x, p.y));
+    // One enclosure of G at v brackets the root: G(u, v) = γ and G_v >= m on
+    // B' give g in [v - γ/m, v] (γ > 0) or [v, v - γ/m] (γ < 0), the root
+    // existing there when that stays inside B' (the mean value theorem along
+    // the segment, in B').
+    if (e.finite() && gv_min_ > 0.0) {
+      const Interval gamma = sgn_ > 0 ? e - Interval(level_) : Interval(level_) - e;
+      const Interval root = Interval(v) - gamma / Interval(gv_min_, Interval::inf);
+      if (root.lo > w0_ && root.hi < w1_) return {root.lo, root.hi, 0};
+    }
     if (gv_root > 0.0 && e.finite()) {
       const double noise = (e.hi - e.lo + std::abs(e.mid() - level_)) / gv_root;
       if (noise < 1e-6 * scale_) delta = std::max(delta, 1.5 * noise);
@@ -572,6 +582,7 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
   Interval signed_slope = Interval::whole();
   bool ok = false;
   int sgn = 1;
+  double gv_min = 0.0;
   for (int attempt = 0; attempt < 4 && std::isfinite(extent); ++attempt) {
     const Box ext = swapped ? make_box(cell.min.x - extent, cell.min.y, cell.max.x + extent, cell.max.y)
                             : make_box(cell.min.x, cell.min.y - extent, cell.max.x, cell.max.y + extent);
@@ -586,6 +597,7 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
     if (le * du <= extent) {
       lipschitz = le;
       sgn = (swapped ? je.dx.lo : je.dy.lo) > 0.0 ? 1 : -1;
+      gv_min = (swapped ? je.dx : je.dy).mig();
       signed_slope = -((swapped ? je.dy : je.dx) / (swapped ? je.dx : je.dy));
       ok = true;
       break;
@@ -593,7 +605,7 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
     extent = 1.5 * le * du + 1e-12 * du;
   }
   if (!ok) return t;
-  Tracer tracer(f, level, cell, swapped, sgn, lipschitz, signed_slope, extent, tau, weight);
+  Tracer tracer(f, level, cell, swapped, sgn, lipschitz, signed_slope, gv_min, extent, tau, weight);
   tracer.run(t);
   return t;
 }
