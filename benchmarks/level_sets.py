@@ -140,9 +140,14 @@ def main():
         "(docs/theory/level_sets.md, 3-RPR).",
         "",
         "Compare rows of one run: on this shared machine the same code's times drift between sessions by up to "
-        "1.6× (the five-bar rows of 2026-12-02 and 2026-12-03, code unchanged), more than within a run. The "
-        "rows of the two condition-number cases (`three_rpr_paminsa_phi0_kappa4`, `three_prp_example_kappa2`) "
-        "come from a run after the mean-value form, the others from one before it (which they do not use).",
+        "1.6× (the five-bar rows of 2026-12-02 and 2026-12-03, code unchanged), more than within a run. All rows "
+        "come from one run (2026-12-03, late). Part of its gain over the table before is such drift: the "
+        "session's code changes (jets without derivatives of constants and with free structural zeros, the "
+        "rest's pieces across its circles measured in closed form, one enclosure per root bracket, the charts "
+        "as parallel tasks), measured side by side against the build before them in paired `pkmws area` runs "
+        "on one core (best of 3 each), made the 16 DexTAR cases 1.32–1.50 times faster, the biglide, MOMA and "
+        "3-PRP cases 1.03–1.34 times, the PAMINSA cases 1.00–1.04 times, with the same intervals (widths equal "
+        "to 3 digits, every pair meeting).",
     ]
     update_report(a.report, HEADING, "\n".join(lines))
     print(f"level_sets.py: wrote {n} cases to {a.report}")
