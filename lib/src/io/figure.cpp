@@ -348,7 +348,7 @@ std::string workspace_figure(const MechanismFile& file, const geometry::Region& 
   }
   if (mech) {
     if (!drawing.guides.empty()) {
-      legend.push_back({"guide", 0, [](double x, double y) {
+      legend.push_back({drawing.guides_legend, 0, [](double x, double y) {
                           return line_el({x, y - 4}, {x + 24, y - 4}, kGuideBand) +
                                  line_el({x, y - 4}, {x + 24, y - 4}, kGuideLine);
                         }});

@@ -100,6 +100,7 @@ struct Evaluation {
 struct Drawing {
   struct Segment { Point a, b; };
   std::vector<Segment> guides;     // fixed guides / base lines (drawn dashed)
+  std::string guides_legend = "guide";  // what the dashed lines are, in a figure's legend
   std::vector<Segment> links;      // rods, cranks, platform sides
   std::vector<Point> joints;       // revolute joints
   std::vector<Point> sliders;      // prismatic joints (sliders)

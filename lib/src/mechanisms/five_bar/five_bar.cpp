@@ -404,6 +404,7 @@ Drawing FiveBar::draw(const Pose& pose) const {
   d.tool = c;
   d.singular_curves = type2_singularity_curves(*this);
   d.guides.push_back({legs_[0].base, legs_[1].base});
+  d.guides_legend = "base line";
   for (int i = 0; i < 2; ++i) {
     const FiveBarLeg& l = legs_[i];
     d.base_points.push_back(l.base);
@@ -422,6 +423,7 @@ Drawing FiveBar::draw(const Pose& pose) const {
       const Point o2 = l.base + kin.b() * unit(l.pi_joint->base_angle + l.pi_joint->sense * pi / 2);
       const Point a2 = o2 + (b - l.base);
       d.guides.push_back({l.base, o2});
+      d.guides_legend = "base line / fixed link";
       d.links.push_back({o2, a2});
       d.links.push_back({b, a2});
       d.links.push_back({l.base, a2});  // the telescopic diagonal

@@ -268,6 +268,7 @@ Drawing PiJoint::draw(const Pose& pose) const {
   const Points p = points(theta);
   Drawing d;
   d.guides.push_back({p.o, p.o_prime});  // the fixed link
+  d.guides_legend = "fixed link";
   d.links = {{p.o, p.q}, {p.o_prime, p.a}, {p.q, p.a}, {p.o, p.a}};
   d.joints = {p.o, p.o_prime, p.q, p.a};
   d.base_points = {p.o, p.o_prime};
