@@ -102,6 +102,10 @@ inline Interval& operator+=(Interval& a, const Interval& b) { return a = a + b; 
 inline Interval& operator-=(Interval& a, const Interval& b) { return a = a - b; }
 inline Interval& operator*=(Interval& a, const Interval& b) { return a = a * b; }
 
+/// 2x, exact (a power of two scales without rounding; an overflow gives the
+/// infinite end, which still encloses).
+inline Interval twice(const Interval& a) { return {2.0 * a.lo, 2.0 * a.hi}; }
+
 /// x², tight (never negative).
 inline Interval sqr(const Interval& a) {
   const double l = a.mig(), h = a.mag();
@@ -145,6 +149,7 @@ inline Interval sin(const Interval& a) { return interval_detail::periodic(a, [](
 
 // Point counterparts, so that fields are written once for both scalar types.
 inline double sqr(double a) { return a * a; }
+inline double twice(double a) { return 2.0 * a; }
 inline double clamp(double a, double l, double h) { return std::clamp(a, l, h); }
 inline double max(double a, double v) { return std::max(a, v); }
 
@@ -170,9 +175,9 @@ template <class S> Jet<S> operator*(const Jet<S>& a, const Jet<S>& b) {
   return {a.v * b.v,
           a.dx * b.v + a.v * b.dx,
           a.dy * b.v + a.v * b.dy,
-          a.dxx * b.v + S(2.0) * (a.dx * b.dx) + a.v * b.dxx,
+          a.dxx * b.v + twice(a.dx * b.dx) + a.v * b.dxx,
           a.dxy * b.v + a.dx * b.dy + a.dy * b.dx + a.v * b.dxy,
-          a.dyy * b.v + S(2.0) * (a.dy * b.dy) + a.v * b.dyy};
+          a.dyy * b.v + twice(a.dy * b.dy) + a.v * b.dyy};
 }
 // With a constant (a double, or an S: a derived constant enclosed with its
 // rounding), only the terms that are not zero.
@@ -191,16 +196,19 @@ template <class S> Jet<S> compose(const Jet<S>& a, const S& g0, const S& g1, con
   return {g0,
           g1 * a.dx,
           g1 * a.dy,
-          g1 * a.dxx + g2 * (a.dx * a.dx),
+          g1 * a.dxx + g2 * sqr(a.dx),
           g1 * a.dxy + g2 * (a.dx * a.dy),
-          g1 * a.dyy + g2 * (a.dy * a.dy)};
+          g1 * a.dyy + g2 * sqr(a.dy)};
 }
 template <class S> Jet<S> sqr(const Jet<S>& a) {
-  return compose(a, sqr(a.v), S(2.0) * a.v, S(2.0));
+  const S v2 = twice(a.v);
+  return {sqr(a.v),           v2 * a.dx, v2 * a.dy, v2 * a.dxx + twice(sqr(a.dx)), v2 * a.dxy + twice(a.dx * a.dy),
+          v2 * a.dyy + twice(sqr(a.dy))};
 }
 template <class S> Jet<S> reciprocal(const Jet<S>& a) {
   const S r = S(1.0) / a.v;
-  return compose(a, r, -(r * r), S(2.0) * (r * r * r));
+  const S r2 = sqr(r);
+  return compose(a, r, -r2, twice(r2 * r));
 }
 template <class S> Jet<S> operator/(const Jet<S>& a, const Jet<S>& b) { return a * reciprocal(b); }
 template <class S> Jet<S> operator/(const Jet<S>& a, const Const<S>& c) { return (S(1.0) / c) * a; }
@@ -209,7 +217,7 @@ template <class S> Jet<S> sqrt(const Jet<S>& a) {
   using std::sqrt;
   const S r = sqrt(a.v);
   const S d1 = S(0.5) / r;              // infinite at 0: the derivative does not exist there
-  return compose(a, r, d1, -(S(2.0) * (d1 * d1 * d1)));  // (sqrt)'' = -1/(4 r^3) = -2 d1^3
+  return compose(a, r, d1, -twice(d1 * d1 * d1));  // (sqrt)'' = -1/(4 r^3) = -2 d1^3
 }
 template <class S> Jet<S> cos(const Jet<S>& a) {
   using std::cos;
@@ -252,8 +260,8 @@ template <class S> Grad<S> operator+(const Const<S>& c, const Grad<S>& a) { retu
 template <class S> Grad<S> operator-(const Grad<S>& a, const Const<S>& c) { Grad<S> r = a; r.v = a.v - c; return r; }
 template <class S> Grad<S> operator-(const Const<S>& c, const Grad<S>& a) { return (-a) + c; }
 template <class S> Grad<S> compose(const Grad<S>& a, const S& g0, const S& g1) { return {g0, g1 * a.dx, g1 * a.dy}; }
-template <class S> Grad<S> sqr(const Grad<S>& a) { return compose(a, sqr(a.v), S(2.0) * a.v); }
-template <class S> Grad<S> reciprocal(const Grad<S>& a) { const S r = S(1.0) / a.v; return compose(a, r, -(r * r)); }
+template <class S> Grad<S> sqr(const Grad<S>& a) { return compose(a, sqr(a.v), twice(a.v)); }
+template <class S> Grad<S> reciprocal(const Grad<S>& a) { const S r = S(1.0) / a.v; return compose(a, r, -sqr(r)); }
 template <class S> Grad<S> operator/(const Grad<S>& a, const Grad<S>& b) { return a * reciprocal(b); }
 template <class S> Grad<S> operator/(const Grad<S>& a, const Const<S>& c) { return (S(1.0) / c) * a; }
 template <class S> Grad<S> operator/(const Const<S>& c, const Grad<S>& a) { return c * reciprocal(a); }
