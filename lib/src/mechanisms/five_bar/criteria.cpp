@@ -252,6 +252,37 @@ struct FiveBarChartCut {
   CellState domain(const Box& b) const { return chart.chart_smooth(b) ? CellState::inside : CellState::undecided; }
 };
 
+// Where both bands overlap (both legs nearly stretched), each point goes to
+// the band whose leg is the closer to stretched, relative to the band's
+// depth: D_i = (R_i² − r_i²) / (R_i² − ρ_i²) (0 on W's circle r_i = R_i, 1 on
+// the band's inner circle). Band k's part has D_k <= D_j: F = w_j (R_k² − r_k²)
+// − w_k (R_j² − r_j²) <= 0 with w_i = R_i² − ρ_i², one real function of C for
+// both bands (σ = +1 for band 0, −1 for band 1; its constants enclosed in the
+// scalar type). So the other leg's circle r_j = R_j (D_j = 0, where the field
+// is singular and band k's coordinates do not smooth it) meets band k's part
+// only where D_k = 0 too, at W's corners; a level curve crossing it does so
+// in band j's chart, where it is smooth. D_j >= D_k >= 0 also keeps the part
+// inside r_j <= R_j.
+struct FiveBarBandSplit {
+  FiveBarChart chart;
+  std::array<double, 2> rho{};  // the bands' inner radii
+  double sign = 1.0;
+  template <class T> T eval(const T& u, const T& v) const {
+    using certified::sqr;
+    using S = certified::scalar_t<T>;
+    const FiveBarCosEps& p = chart.plane;
+    T x, y;
+    chart.chart_leg(u, v, x, y);
+    const auto reach2 = [&](std::size_t i) { return sqr(S(p.l1[i]) + S(p.l2[i])); };
+    const auto depth2 = [&](std::size_t i) { return reach2(i) - sqr(S(rho[i])); };
+    const auto slack = [&](std::size_t i) {
+      return reach2(i) - (sqr(x - p.base[i].x) + sqr(y - p.base[i].y));
+    };
+    return sign * (depth2(1) * slack(0) - depth2(0) * slack(1));
+  }
+  CellState domain(const Box& b) const { return chart.chart_smooth(b) ? CellState::inside : CellState::undecided; }
+};
+
 std::optional<CriterionFields::Charts> FiveBarCosEps::charts(const geometry::Region& workspace) const {
   for (const auto& l : limits) {
     if (l) return std::nullopt;  // crank limits: W is not the two annuli alone
@@ -341,9 +372,13 @@ std::optional<CriterionFields::Charts> FiveBarCosEps::charts(const geometry::Reg
       ch.cuts.push_back({std::make_shared<certified::TemplateField<FiveBarChartCut>>(f), 0.0});
     };
     if (!base_chart) {
-      cut(base[j], l1[j], l2[j], 1.0);                       // r_j <= R_j
+      if (band[j]) {
+        const FiveBarBandSplit f{m, rho, k == 0 ? 1.0 : -1.0};
+        ch.cuts.push_back({std::make_shared<certified::TemplateField<FiveBarBandSplit>>(f), 0.0});
+      } else {
+        cut(base[j], l1[j], l2[j], 1.0);  // r_j <= R_j
+      }
       if (l1[j] != l2[j]) cut(base[j], l1[j], -l2[j], -1.0);  // r_j >= |l1 - l2|
-      if (k == 1 && band[0]) cut(base[0], rho[0], 0.0, 1.0);  // not in band 0
       for (std::size_t b = 0; b < 2; ++b) {
         const double db = b == k ? 0.0 : dist;
         if (at_base[b] && db + rho_base[b] >= rho[k]) cut(base[b], rho_base[b], 0.0, -1.0);
