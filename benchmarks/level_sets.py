@@ -131,23 +131,27 @@ def main():
         "square in the charts' own units, the base charts of radius R/6). What is left is the traced cells' own "
         "cost: about one cell per cover leaf along each curve (2 000–4 200 for the DexTAR, 10–20 % fewer since "
         "a chart's edge towards the rest is its window's edge instead of a cut), each with a few certified root "
-        "brackets and interval jets; and, in the first leg's band chart, where both legs are nearly stretched, a "
-        "pile of small cells along the second leg's circle r₂ = R₂ (about 800 of the 3 800 of (−1, +1), "
-        "α ≤ 40°), where the field is singular too and the chart's coordinates do not smooth it. The condition "
+        "brackets and interval jets. Where both legs are nearly stretched the two band charts split the overlap "
+        "by which leg is the closer to stretched, so neither meets the other leg's singular circle but at W's "
+        "corners (before, about 800 of the 3 800 traced cells of (−1, +1), α ≤ 40°, piled up along it). "
+        "Instrumented (one core): the rest (the plane outside the charts) takes 74 % of the time of (+1, +1), "
+        "α ≤ 20°, and 62 % of (−1, +1), α ≤ 80°; in the former about 70 000 cycles per traced cell: the cover a third (its tests along the curves, at every "
+        "level), the jets of the pieces' curvature bounds a quarter (5 per cell: a cell's two first pieces never "
+        "pass on their own jet, their halves in 13 % of cases, the quarters in 54 %; seven pieces in ten pass "
+        "on their parent's enclosures), the certified samples a tenth. The condition "
         "numbers of the 3-RPR and 3-PRP (roots of a cubic) decide a third of their cells with a first-order "
         "enclosure, trace cells the natural form of p'(λ) could not call smooth, from the roots' separation, "
         "and prove the roots' ends with p(μ) in its mean-value form in (x, y) (the coefficients move together) "
         "(docs/theory/level_sets.md, 3-RPR).",
         "",
         "Compare rows of one run: on this shared machine the same code's times drift between sessions by up to "
-        "1.6× (the five-bar rows of 2026-12-02 and 2026-12-03, code unchanged), more than within a run. All rows "
-        "come from one run (2026-12-03, late). Part of its gain over the table before is such drift: the "
-        "session's code changes (jets without derivatives of constants and with free structural zeros, the "
-        "rest's pieces across its circles measured in closed form, one enclosure per root bracket, the charts "
-        "as parallel tasks), measured side by side against the build before them in paired `pkmws area` runs "
-        "on one core (best of 3 each), made the 16 DexTAR cases 1.32–1.50 times faster, the biglide, MOMA and "
-        "3-PRP cases 1.03–1.34 times, the PAMINSA cases 1.00–1.04 times, with the same intervals (widths equal "
-        "to 3 digits, every pair meeting).",
+        "1.6× (the five-bar rows of 2026-12-02 and 2026-12-03, code unchanged), and within one run the mirror "
+        "cases (−1, +1) and (+1, −1), which do the same work, differ by up to 1.36× (α ≤ 60°: 86 and 117 ms). "
+        "All rows come from one run (2026-12-04). The change since the table before (the bands' overlap split "
+        "by which leg is the closer to stretched), measured side by side against the build before it in paired "
+        "`pkmws area` runs on one core (best of 3 each), made the DexTAR's α ≤ 40° and 60° cases of modes "
+        "(−1, +1) and (+1, −1) and α ≤ 60° of the other two 1.16–1.22 times faster (23 % fewer traced cells "
+        "where it applies) and left every other case within ±3 %, every pair of intervals meeting.",
     ]
     update_report(a.report, HEADING, "\n".join(lines))
     print(f"level_sets.py: wrote {n} cases to {a.report}")
