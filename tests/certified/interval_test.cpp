@@ -91,7 +91,8 @@ TEST(Interval, AnExactZeroTimesAnySetOfRealsIsZero) {
   EXPECT_EQ(r.hi, Interval::inf);
 }
 
-// A field built from every jet operation the level sets' fields use.
+// A field built from the jet operations of the five-bar's fields
+// (squares, square roots, products, quotients, sums with constants).
 template <class T> T jet_field(const T& x, const T& y) {
   using pkmws::certified::sqr;
   using pkmws::certified::sqrt;

@@ -273,10 +273,10 @@ struct FiveBarBandSplit {
     const FiveBarCosEps& p = chart.plane;
     T x, y;
     chart.chart_leg(u, v, x, y);
-    const auto reach2 = [&](std::size_t i) { return sqr(S(p.l1[i]) + S(p.l2[i])); };
-    const auto depth2 = [&](std::size_t i) { return reach2(i) - sqr(S(rho[i])); };
-    const auto slack = [&](std::size_t i) {
-      return reach2(i) - (sqr(x - p.base[i].x) + sqr(y - p.base[i].y));
+    const std::array<S, 2> reach2{sqr(S(p.l1[0]) + S(p.l2[0])), sqr(S(p.l1[1]) + S(p.l2[1]))};  // R_i²
+    const auto depth2 = [&](std::size_t i) { return reach2[i] - sqr(S(rho[i])); };          // w_i
+    const auto slack = [&](std::size_t i) {                                                  // R_i² − r_i²
+      return reach2[i] - (sqr(x - p.base[i].x) + sqr(y - p.base[i].y));
     };
     return sign * (depth2(1) * slack(0) - depth2(0) * slack(1));
   }
