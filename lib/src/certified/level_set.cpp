@@ -34,6 +34,32 @@ double target_width(const LevelSetOptions& options, double area) {
   return std::max(options.relative_tolerance * area, options.absolute_tolerance);
 }
 
+// True if the box holds a point of S = ⋂_k { F_k <= level_k } and a point
+// outside it among its centre and corners (F at points, in double): then no
+// enclosure can decide it, and the cover splits it without one. Only a
+// shortcut: a point misjudged by rounding splits a box that could have been
+// decided, and its children are tested as usual.
+bool holds_both(const std::vector<Constraint>& cs, const Box& b) {
+  const Point pts[5] = {{0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)}, b.min, {b.max.x, b.min.y}, b.max,
+                        {b.min.x, b.max.y}};
+  bool in = false, out = false;
+  for (const Point& p : pts) {
+    bool all_in = true;
+    for (const Constraint& c : cs) {
+      const double v = c.field->value(p);
+      if (v > c.level) {
+        out = true;
+        all_in = false;
+        break;
+      }
+      if (!(v <= c.level)) all_in = false;  // NaN: outside F's domain, neither
+    }
+    in = in || all_in;
+    if (in && out) return true;
+  }
+  return false;
+}
+
 // Value enclosure of F over a box: F's cheap form if that decides, else its
 // natural form, intersected with the centred (mean-value) form when the box
 // lies in F's smooth domain (then F's gradient over the box, which that form
@@ -936,7 +962,14 @@ Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const W
   // S ⊆ W: a box outside W is outside S, whatever the fields (whose domain
   // may reach beyond W, e.g. past a stroke limit).
   pass.cover = certified::cover(
-      [&](const Box& b) { return within_test(b) == CellState::outside ? CellState::outside : classify(cs, b); }, co);
+      [&](const Box& b) {
+        const CellState in_w = within_test(b);
+        if (in_w == CellState::outside) return CellState::outside;
+        // A box of W with points on both sides is split without enclosures.
+        if (in_w == CellState::inside && holds_both(cs, b)) return CellState::undecided;
+        return classify(cs, b);
+      },
+      co);
   const std::vector<Box> leaves = leaf_cells(pass.cover.undecided, co.window, co.base, co.max_depth);
 
   // τ: the allowed width per unit length of curve, from the cover's estimate
