@@ -498,6 +498,24 @@ certified::Interval conditioning_first_order(const Model& model, double x0, doub
   return ratio ? -(l3 / l1) : l1;
 }
 
+// The conditioning fields over a box from the rows' squared norms n_j = |m_j|²
+// alone: every row of a square M has σ_min <= |m_j| <= σ_max (m_j = Mᵀe_j),
+// so λ_1 >= max_j n_j and λ_3 <= min_j n_j, hence -λ_3/λ_1 >= -min_j n_j / max_j n_j
+// (and >= -1). Wide in general, but where one row grows without bound (a
+// leg of zero length: the 3-RPR's base joint points, where the roots'
+// enclosures fail at every scale) it decides the boxes around it.
+inline certified::Interval conditioning_from_rows(const std::array<certified::Interval, 3>& n, bool ratio) {
+  using certified::Interval;
+  double largest = 0.0, smallest = Interval::inf;
+  for (const Interval& r : n) {
+    largest = std::max(largest, r.lo);
+    smallest = std::min(smallest, r.hi);
+  }
+  if (!ratio) return {largest, Interval::inf};
+  if (!(largest > 0.0) || !std::isfinite(smallest)) return {-1.0, 0.0};
+  return {std::max(-1.0, -(Interval(smallest) / Interval(largest)).hi), 0.0};
+}
+
 // Whether x and y (gradients or jets over a box) are the plane's coordinates
 // themselves: derivatives 1 and 0.
 inline bool exactly(const certified::Interval& a, double v) { return a.lo == v && a.hi == v; }

@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <string>
 
+#include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 
 #include "pkmws/criteria/fields.hpp"
@@ -291,6 +292,69 @@ TEST(ThreeRprConditioning, JetsMatchFiniteDifferencesAndIntervalsEncloseOverRand
   }
   EXPECT_EQ(checked, 40);
   EXPECT_GE(cheap, 30);
+}
+
+TEST(ThreeRprConditioning, TheRowsBoundHoldsForAnyMatrix) {
+  // σ_min <= |row| <= σ_max, against Eigen's SVD on random matrices, some with
+  // one row up to 1e6 times the others (a leg of near zero length).
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), scale(0.0, 6.0);
+  for (int n = 0; n < 500; ++n) {
+    Eigen::Matrix3d m;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) m(i, j) = u(rng);
+    if (n % 2 == 0) m.row(n % 3) *= std::pow(10.0, scale(rng));
+    const Eigen::Vector3d s = Eigen::JacobiSVD<Eigen::Matrix3d>(m).singularValues();
+    std::array<certified::Interval, 3> rows;
+    for (int i = 0; i < 3; ++i) {
+      const double r = m.row(i).squaredNorm();
+      rows[static_cast<std::size_t>(i)] = certified::Interval(r * (1.0 - 1e-12), r * (1.0 + 1e-12));
+    }
+    const double l1 = s(0) * s(0), ratio = -(s(2) * s(2)) / l1;
+    const certified::Interval k = criteria::detail::conditioning_from_rows(rows, true);
+    const certified::Interval v = criteria::detail::conditioning_from_rows(rows, false);
+    EXPECT_LE(k.lo, ratio * (1.0 - 1e-9)) << n;
+    EXPECT_GE(k.hi, ratio) << n;
+    EXPECT_LE(v.lo, l1 * (1.0 + 1e-9)) << n;
+    // Not vacuous: the bound is within the rows' spread of the truth.
+    EXPECT_GT(v.lo, l1 / 3.0 * (1.0 - 1e-9)) << n;
+  }
+}
+
+TEST(ThreeRprConditioning, BoxesAboutTheBaseJointPointsAreDecided) {
+  // At e_j = A_j - c_j leg j has zero length: its row of dq/dx' grows like
+  // 1/ρ_j, so κ grows without bound and the roots' enclosures fail at every
+  // scale there. The cheap form (with the rows' bound) encloses the field and
+  // decides every box about e_j outside κ <= 4, also the boxes holding e_j.
+  const auto f = io::load_mechanism(dataset("three_rpr_paminsa_phi0_kappa4"));
+  const auto& m = rpr(f);
+  const auto kappa = criteria::three_rpr_condition_number(m, f.criteria);
+  const auto vr = criteria::three_rpr_velocity_ratio(m, f.criteria);
+  const double level = -1.0 / 16.0;
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), size(-6.0, -2.0);
+  int decided = 0, boxes = 0;
+  for (std::size_t j = 0; j < 3; ++j) {
+    const Point e = m.base()[j] - m.platform()[j];  // φ = 0
+    for (int n = 0; n < 40; ++n, ++boxes) {
+      const double h = std::pow(10.0, size(rng));
+      const Point c{e.x + 3.0 * h * u(rng), e.y + 3.0 * h * u(rng)};
+      const Box box{{c.x - h, c.y - h}, {c.x + h, c.y + h}};
+      const certified::Interval k = kappa.surrogate->enclose_cheap(box), v = vr.surrogate->enclose_cheap(box);
+      for (int q = 0; q < 30; ++q) {
+        const Point p{c.x + h * u(rng), c.y + h * u(rng)};
+        const double kp = kappa.surrogate->value(p), vp = vr.surrogate->value(p);
+        if (std::isfinite(kp)) {
+          EXPECT_TRUE(k.contains(kp)) << k.lo << " " << kp << " " << k.hi;
+        }
+        if (std::isfinite(vp)) {
+          EXPECT_TRUE(v.contains(vp)) << v.lo << " " << vp << " " << v.hi;
+        }
+      }
+      if (k.lo > level) ++decided;
+    }
+  }
+  EXPECT_EQ(decided, boxes);
 }
 
 TEST(ThreeRprConditioning, TheCharacteristicLengthComesFromTheFile) {

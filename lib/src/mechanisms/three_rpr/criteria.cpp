@@ -143,9 +143,26 @@ struct ThreeRprTwist {
   }
   // ScalarField::enclose_cheap: the conditioning fields' first-order forms
   // (criteria/singular3.hpp); the others' natural enclosure is cheap already.
+  // Intersected with the rows' bound (detail::conditioning_from_rows), which
+  // decides the boxes about the base joint points e_j, where a leg has zero
+  // length and the roots' enclosures fail at every scale.
   Interval enclose_cheap(const Box& b) const {
     if (what < 3) return Interval::whole();
-    return detail::conditioning_first_order(*this, b.min.x, b.min.y, b.max.x, b.max.y, what == 4);
+    const Interval rows = detail::conditioning_from_rows(row_norms(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y)), what == 4);
+    return detail::tighter(detail::conditioning_first_order(*this, b.min.x, b.min.y, b.max.x, b.max.y, what == 4), rows);
+  }
+  // |m_j|², row j of dq/dx' squared, over a box: with |n_j|² = ρ_j² it is
+  // 1/ρ_j² + ((c_j x n_j)/L)²/ρ_j⁴ (leg angle) or 1 + ((c_j x n_j)/L)²/ρ_j²
+  // (leg length), which keeps the lower bound 1/ρ_j² (or 1) where ρ_j's
+  // enclosure reaches 0.
+  std::array<Interval, 3> row_norms(const Interval& x, const Interval& y) const {
+    std::array<Interval, 3> n;
+    for (std::size_t j = 0; j < 3; ++j) {
+      const std::array<Interval, 4> r = row(j, x, y);
+      const Interval moment = certified::sqr(r[2] / length), rho2 = certified::max(r[3], 0.0);  // ρ² >= 0
+      n[j] = revolute ? Interval(1.0) / rho2 + moment / certified::sqr(rho2) : Interval(1.0) + moment / rho2;
+    }
+    return n;
   }
   // ScalarField::excluded: the conditioning fields are defined everywhere but
   // at the base joints (points), so only their smoothness test (the roots'
