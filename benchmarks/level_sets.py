@@ -142,16 +142,21 @@ def main():
         "numbers of the 3-RPR and 3-PRP (roots of a cubic) decide a third of their cells with a first-order "
         "enclosure, trace cells the natural form of p'(λ) could not call smooth, from the roots' separation, "
         "and prove the roots' ends with p(μ) in its mean-value form in (x, y) (the coefficients move together) "
-        "(docs/theory/level_sets.md, 3-RPR).",
+        "(docs/theory/level_sets.md, 3-RPR). About PAMINSA's base joint points, where a leg has zero length "
+        "and κ grows without bound, the roots' enclosures failed at every scale (588 undecided cells at "
+        "φ = 0, κ ≤ 4); the rows' norms (σ_min ≤ |row| ≤ σ_max) decide those boxes now. The cover splits a box "
+        "whose centre and corners lie on both sides of the set without testing it (no enclosure could "
+        "decide it).",
         "",
         "Compare rows of one run: on this shared machine the same code's times drift between sessions by up to "
         "1.6× (the five-bar rows of 2026-12-02 and 2026-12-03, code unchanged), and within one run the mirror "
         "cases (−1, +1) and (+1, −1), which do the same work, differ by up to 1.36× (α ≤ 60°: 86 and 117 ms). "
-        "All rows come from one run (2026-12-04). The change since the table before (the bands' overlap split "
-        "by which leg is the closer to stretched), measured side by side against the build before it in paired "
-        "`pkmws area` runs on one core (best of 3 each), made the DexTAR's α ≤ 40° and 60° cases of modes "
-        "(−1, +1) and (+1, −1) and α ≤ 60° of the other two 1.16–1.22 times faster (23 % fewer traced cells "
-        "where it applies) and left every other case within ±3 %, every pair of intervals meeting.",
+        "All rows come from one run (2026-12-04, later). The changes since the table before (the rows' bound "
+        "about the base joint points, the cover's split without tests), measured side by side against the "
+        "build before them in paired `pkmws area` runs on one core (best of 3 each): PAMINSA κ ≤ 4 1.63× faster "
+        "(588 → 3 undecided cells, its new interval meeting the old one), the 3-PRP's κ ≤ 2 and α ≤ 20° "
+        "1.27× and 1.23×, the biglide and MOMA 1.05–1.10×, the DexTAR and the PAMINSA reactions 0.99–1.03×, "
+        "all other bounds equal to the bit.",
     ]
     update_report(a.report, HEADING, "\n".join(lines))
     print(f"level_sets.py: wrote {n} cases to {a.report}")
