@@ -90,47 +90,57 @@ TEST(SingularityDistance, DatasetReadsTheLimit) {
   EXPECT_EQ(limits[0].threshold, 20.0);
 }
 
-// The simplified biglide with l1 = 2000, l2 = 300 mm, B = 500 mm: the rods
+// The simplified biglide (rods l1, l2, guides at y = -B and +B): the rods
 // u_1 = (w_1, y + B), u_2 = (w_2, y - B) align where w_1 (y - B) = (y + B) w_2,
 // a horizontal line y = y* (everything depends on y only); S is that line's
-// part in W, so W ∩ {d >= δ} = W minus the stadium around it.
+// part in W, so W ∩ {d >= δ} = W minus the stadium around it. The bundled
+// dataset (l1 = 2000, l2 = 300, B = 500 mm, δ = 20 mm) and a design of other
+// rods, guides, strokes and δ.
 TEST(SingularityDistance, BiglideAlignmentLineAgainstTheExactStadium) {
-  const io::MechanismFile f = io::load_mechanism(test::dataset("biglide_simplified_dsing20"));
-  const double b = 500.0, l1 = 2000.0, l2 = 300.0, delta = 20.0;
-  const auto align = [&](double y) {
-    return std::sqrt(l1 * l1 - (y + b) * (y + b)) * (y - b) - (y + b) * std::sqrt(l2 * l2 - (y - b) * (y - b));
-  };
-  double lo = 600.0, hi = 700.0;
-  ASSERT_LT(align(lo), 0.0);
-  ASSERT_GT(align(hi), 0.0);
-  for (int i = 0; i < 200; ++i) (align(0.5 * (lo + hi)) < 0.0 ? lo : hi) = 0.5 * (lo + hi);
-  const double ystar = 0.5 * (lo + hi);
-  // The line's section of W: an interval, found by bisection on reachable().
-  const auto in_w = [&](double x) { return f.model->reachable({x, ystar, 0.0}); };
-  const geometry::Region w = f.model->workspace();
-  double inside = std::numeric_limits<double>::quiet_NaN();
-  for (int i = 0; i <= 2000 && std::isnan(inside); ++i) {
-    const double x = w.bbox().min.x + w.bbox().width() * i / 2000.0;
-    if (in_w(x)) inside = x;
-  }
-  ASSERT_FALSE(std::isnan(inside));
-  const auto edge = [&](double out) {
-    double a = inside, c = out;
-    for (int i = 0; i < 200; ++i) (in_w(0.5 * (a + c)) ? a : c) = 0.5 * (a + c);
-    return 0.5 * (a + c);
-  };
-  const double xa = edge(w.bbox().min.x - 10.0), xb = edge(w.bbox().max.x + 10.0);
-  for (int i = 1; i < 100; ++i) ASSERT_TRUE(in_w(xa + (xb - xa) * i / 100.0));  // one interval
-  const double exact = w.subtract(geometry::stadium({xa, ystar}, {xb, ystar}, delta)).area();
-  std::printf("[ exact    ] y* = %.12g, %.12g\n", ystar, exact);
-  const criteria::LimitedWorkspace lw = limited(f);
-  EXPECT_LE(lw.region.area_lower, exact * (1 + 1e-12));
-  EXPECT_GE(lw.region.area_upper, exact * (1 - 1e-12));
-  EXPECT_LE(lw.region.width(), 1e-6 * exact);
-  expect_enclosure(lw.region);
-  // The traced chords lie on the line (within their bound).
-  for (const auto& c : lw.singular_curves) {
-    for (const Point& p : c) EXPECT_NEAR(p.y, ystar, lw.singular_error + 1e-9);
+  Json other = dataset_json("biglide_simplified_dsing20");
+  other["rods"] = {1800.0, 400.0};
+  other["half_width"] = 450.0;
+  other["stroke"] = {{100.0, 2200.0}, {0.0, 2400.0}};
+  other["criteria"] = {{"min_singularity_distance", 12.0}};
+  for (const Json& doc : {dataset_json("biglide_simplified_dsing20"), other}) {
+    const io::MechanismFile f = from_json(doc);
+    const double b = doc["half_width"], l1 = doc["rods"][0], l2 = doc["rods"][1];
+    const double delta = doc["criteria"]["min_singularity_distance"];
+    const auto align = [&](double y) {
+      return std::sqrt(l1 * l1 - (y + b) * (y + b)) * (y - b) - (y + b) * std::sqrt(l2 * l2 - (y - b) * (y - b));
+    };
+    double lo = b + 1.0, hi = std::min(b + l2, l1 - b) - 1e-9;
+    ASSERT_LT(align(lo), 0.0);
+    ASSERT_GT(align(hi), 0.0);
+    for (int i = 0; i < 200; ++i) (align(0.5 * (lo + hi)) < 0.0 ? lo : hi) = 0.5 * (lo + hi);
+    const double ystar = 0.5 * (lo + hi);
+    // The line's section of W, in closed form: q_i = x - w_i with
+    // w_i = sqrt(l_i² - (y* ± B)²) in the strokes (reachable() admits 1e-9
+    // of the stroke beyond them, 2.5e-6 mm: more than the bounds' width).
+    const double w1 = std::sqrt(l1 * l1 - (ystar + b) * (ystar + b)), w2 = std::sqrt(l2 * l2 - (ystar - b) * (ystar - b));
+    const Json& st = doc["stroke"];
+    const double xa = std::max(st[0][0].get<double>() + w1, st[1][0].get<double>() + w2);
+    const double xb = std::min(st[0][1].get<double>() + w1, st[1][1].get<double>() + w2);
+    ASSERT_LT(xa, xb);
+    const geometry::Region w = f.model->workspace();
+    for (int i = 1; i < 100; ++i) ASSERT_TRUE(f.model->reachable({xa + (xb - xa) * i / 100.0, ystar, 0.0}));
+    const double exact = w.subtract(geometry::stadium({xa, ystar}, {xb, ystar}, delta)).area();
+    std::printf("[ exact    ] y* = %.17g, %.17g\n", ystar, exact);
+    // At 1e-9 the boxes where S meets W's boundary are traced deeper and the
+    // small pieces grouped on a finer grid (before, the width stopped at 5.3e-8).
+    for (const double tol : {1e-6, 1e-9}) {
+      SCOPED_TRACE(tol);
+      const criteria::LimitedWorkspace lw = limited(f, tol);
+      std::printf("[ bounds   ] %.17g %.17g\n", lw.region.area_lower, lw.region.area_upper);
+      EXPECT_LE(lw.region.area_lower, exact * (1 + 1e-15));
+      EXPECT_GE(lw.region.area_upper, exact * (1 - 1e-15));
+      EXPECT_LE(lw.region.width(), tol * exact);
+      expect_enclosure(lw.region);
+      // The traced chords lie on the line (within their bound).
+      for (const auto& c : lw.singular_curves) {
+        for (const Point& p : c) EXPECT_NEAR(p.y, ystar, lw.singular_error + 1e-9);
+      }
+    }
   }
 }
 
