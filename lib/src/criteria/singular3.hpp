@@ -85,6 +85,12 @@ inline certified::Interval tighter(const certified::Interval& a, const certified
 // their independent enclosures c admit cubics whose roots are far closer than
 // any in the box: near λ_1 ≈ λ_2 the sign tests on p(μ) from c alone failed
 // where this form decides them.
+// Where the search for a root's ends starts (root_start): the centre's root r
+// and the first step.
+struct RootStart {
+  double r = 0.0, first = 0.0;
+};
+
 struct CubicBox {
   Cubic<certified::Interval> c;
   bool has_gradients = false;
@@ -105,6 +111,13 @@ struct CubicBox {
     if (!has_gradients) return natural;
     return tighter(natural, cubic_value(m, mu) + moved(mu));
   }
+  // root_start and root_end of this box, each computed once: a box's roots
+  // are asked for several times (each root's enclosure, p' at it, the other
+  // root's end for both).
+  mutable std::array<bool, 2> has_start{};
+  mutable std::array<RootStart, 2> starts{};
+  mutable std::array<bool, 4> has_end{};
+  mutable std::array<double, 4> ends{};
 };
 
 // The root in double: trigonometric form of the depressed cubic (three real
@@ -152,12 +165,9 @@ inline double cubic_root(Root which, const Cubic<double>& c) {
 // third-order one, cbrt(spread): a multiple root moves like a root of the
 // coefficients' change, and a first step from spread / |p'| alone would
 // start at the fallback's width.
-//
-// Where the search for both ends starts: the centre's root r and the first step.
-struct RootStart {
-  double r = 0.0, first = 0.0;
-};
 inline RootStart root_start(Root which, const CubicBox& box) {
+  const int slot = which == Root::largest ? 0 : 1;
+  if (box.has_start[slot]) return box.starts[slot];
   const Cubic<certified::Interval>& c = box.c;
   const double top = c.c2.hi;
   const Cubic<double> mid{c.c2.mid(), c.c1.mid(), c.c0.mid()};
@@ -169,11 +179,13 @@ inline RootStart root_start(Root which, const CubicBox& box) {
   double delta = slope > 0.0 ? spread / slope : top;
   if (curvature > 0.0) delta = std::min(delta, std::sqrt(2.0 * spread / curvature));
   delta = std::min(delta, std::cbrt(spread));  // a triple root (isotropy): the third derivative is 6
-  return {r, std::max(std::isfinite(delta) ? delta : top, 1e-12 * std::max(top, 1e-300))};
+  box.starts[slot] = {r, std::max(std::isfinite(delta) ? delta : top, 1e-12 * std::max(top, 1e-300))};
+  box.has_start[slot] = true;
+  return box.starts[slot];
 }
 
 // One end of the enclosure (upper_end: U, else L), or the fallback's end.
-inline double root_end(Root which, bool upper_end, const CubicBox& box, const RootStart& start) {
+inline double root_end_search(Root which, bool upper_end, const CubicBox& box, const RootStart& start) {
   using certified::Interval;
   const Cubic<Interval>& c = box.c;
   const double top = c.c2.hi;
@@ -197,22 +209,29 @@ inline double root_end(Root which, bool upper_end, const CubicBox& box, const Ro
   }
   return fallback_end;
 }
+inline double root_end(Root which, bool upper_end, const CubicBox& box) {
+  const int slot = (which == Root::largest ? 0 : 2) + (upper_end ? 1 : 0);
+  if (!box.has_end[slot]) {
+    box.ends[slot] = root_end_search(which, upper_end, box, root_start(which, box));
+    box.has_end[slot] = true;
+  }
+  return box.ends[slot];
+}
 
 inline certified::Interval cubic_root(Root which, const CubicBox& box) {
   using certified::Interval;
   const Cubic<Interval>& c = box.c;
   if (!c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return Interval(0.0, Interval::inf);
-  const RootStart start = root_start(which, box);
-  double lo = std::max(root_end(which, false, box, start), 0.0), hi = root_end(which, true, box, start);
+  double lo = std::max(root_end(which, false, box), 0.0), hi = root_end(which, true, box);
   // A double root λ_1 = λ_2 leaves λ_1's lower end to the fallback (p > 0 on
   // both sides of it), λ_2 = λ_3 λ_3's upper end. The trace gives them:
   // λ_1 + λ_2 = c_2 - λ_3 with λ_1 >= λ_2, so λ_1 >= (c_2 - λ_3) / 2, and
   // likewise λ_3 <= (c_2 - λ_1) / 2.
   if (which == Root::largest && lo <= c.c2.lo / 3.0) {
-    const double l3_hi = root_end(Root::smallest, true, box, root_start(Root::smallest, box));
+    const double l3_hi = root_end(Root::smallest, true, box);
     lo = std::max(lo, ((Interval(c.c2.lo) - Interval(l3_hi)) * Interval(0.5)).lo);
   } else if (which == Root::smallest && hi >= c.c2.hi / 3.0) {
-    const double l1_lo = root_end(Root::largest, false, box, root_start(Root::largest, box));
+    const double l1_lo = root_end(Root::largest, false, box);
     hi = std::min(hi, ((Interval(c.c2.hi) - Interval(l1_lo)) * Interval(0.5)).hi);
   }
   // Ends that contradict each other cannot come from a family of real-rooted
@@ -236,8 +255,7 @@ inline certified::Interval root_slope(Root which, const CubicBox& box, const cer
   if (natural.lo > 0.0 || !l.finite() || !c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return natural;
   const bool largest = which == Root::largest;
   // The other root's proved end, and the gap to this root's end.
-  const double other = largest ? root_end(Root::smallest, true, box, root_start(Root::smallest, box))
-                               : root_end(Root::largest, false, box, root_start(Root::largest, box));
+  const double other = largest ? root_end(Root::smallest, true, box) : root_end(Root::largest, false, box);
   const double end = largest ? l.lo : l.hi;
   if (!(largest ? other < end : end < other)) return natural;
   for (const double f : {0.5, 0.125, 1.0 / 32.0}) {
