@@ -298,16 +298,18 @@ ZeroSetResult trace_zero_set(const ScalarField& g, const Box& window, const With
     work.run(make_box(x0, y0, x1, y1), 0, per[k]);
   });
   ZeroSetResult out;
-  for (auto& r : per) {
-    out.cell_tests += r.cell_tests;
-    out.traced_cells += r.traced_cells;
-    out.samples += r.samples;
-    out.error = std::max(out.error, r.error);
-    out.stopped = out.stopped || r.stopped;
-    for (auto& p : r.pieces) out.pieces.push_back(std::move(p));
-    out.undecided.insert(out.undecided.end(), r.undecided.begin(), r.undecided.end());
-  }
+  for (auto& r : per) out.append(std::move(r));
   return out;
+}
+
+void ZeroSetResult::append(ZeroSetResult&& other) {
+  cell_tests += other.cell_tests;
+  traced_cells += other.traced_cells;
+  samples += other.samples;
+  error = std::max(error, other.error);
+  stopped = stopped || other.stopped;
+  for (auto& p : other.pieces) pieces.push_back(std::move(p));
+  undecided.insert(undecided.end(), other.undecided.begin(), other.undecided.end());
 }
 
 }  // namespace pkmws::certified

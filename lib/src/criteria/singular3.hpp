@@ -77,6 +77,12 @@ inline certified::Interval tighter(const certified::Interval& a, const certified
   return both.lo <= both.hi ? both : a;
 }
 
+// Where the search for a root's ends starts (root_start): the centre's root r
+// and the first step.
+struct RootStart {
+  double r = 0.0, first = 0.0;
+};
+
 // The cubics of a box: coefficients c enclosed there and, when known, their
 // values at the box's centre m and gradients over the box, for p(μ) in its
 // mean-value form in (x, y):
@@ -85,12 +91,6 @@ inline certified::Interval tighter(const certified::Interval& a, const certified
 // their independent enclosures c admit cubics whose roots are far closer than
 // any in the box: near λ_1 ≈ λ_2 the sign tests on p(μ) from c alone failed
 // where this form decides them.
-// Where the search for a root's ends starts (root_start): the centre's root r
-// and the first step.
-struct RootStart {
-  double r = 0.0, first = 0.0;
-};
-
 struct CubicBox {
   Cubic<certified::Interval> c;
   bool has_gradients = false;
@@ -209,6 +209,7 @@ inline double root_end_search(Root which, bool upper_end, const CubicBox& box, c
   }
   return fallback_end;
 }
+// The same, searched once per box and end (CubicBox keeps it).
 inline double root_end(Root which, bool upper_end, const CubicBox& box) {
   const int slot = (which == Root::largest ? 0 : 2) + (upper_end ? 1 : 0);
   if (!box.has_end[slot]) {

@@ -196,18 +196,13 @@ SingularTubes singular_tubes(const mechanisms::Design& file, const Region& withi
        depth += 4) {
     certified::ZeroSetResult round;
     for (const Box& b : fine.undecided) {
-      certified::ZeroSetResult r = certified::trace_zero_set(*field.surrogate, b, field.within_test, deeper);
-      round.error = std::max(round.error, r.error);
-      round.stopped = round.stopped || r.stopped;
-      for (auto& p : r.pieces) round.pieces.push_back(std::move(p));
-      round.undecided.insert(round.undecided.end(), r.undecided.begin(), r.undecided.end());
+      round.append(certified::trace_zero_set(*field.surrogate, b, field.within_test, deeper));
     }
     const double next = rims(round.undecided);
     if (!(next <= 0.5 * rim)) break;
-    for (auto& p : round.pieces) fine.pieces.push_back(std::move(p));
-    fine.undecided = std::move(round.undecided);
-    fine.error = std::max(fine.error, round.error);
-    fine.stopped = round.stopped;
+    // The deeper boxes replace the ones they split; pieces and counts add up.
+    fine.undecided.clear();
+    fine.append(std::move(round));
     rim = next;
   }
   t.curves = std::move(fine.pieces);

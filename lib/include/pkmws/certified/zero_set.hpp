@@ -55,6 +55,8 @@ struct ZeroSetResult {
   bool stopped = false;
   /// Total length of the pieces.
   double length() const;
+  /// Adds another trace's pieces, boxes and counts (its pieces are moved).
+  void append(ZeroSetResult&& other);
 };
 
 /// Traces the zero set of `g` inside the set classified by `within` (boxes it
