@@ -66,7 +66,7 @@ PointTest point_test(const io::MechanismFile& file) {
   PointTest t;
   t.file = &file;
   for (const criteria::Limit& l : criteria::file_limits(file)) {
-    for (criteria::CriterionField& f : criteria::fields_for(file, l.name)) {
+    for (criteria::CriterionField& f : criteria::fields_for(file, l.name, l.threshold)) {
       const double level = f.level(f.name == "assembly_mode" ? 0.0 : l.threshold);
       t.fields.emplace_back(std::move(f), level);
     }

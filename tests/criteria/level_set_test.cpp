@@ -6,8 +6,11 @@
 
 #include <array>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "pkmws/certified/template_field.hpp"
 #include "pkmws/criteria/fields.hpp"
@@ -505,3 +508,79 @@ TEST(LevelSets, OneAndTwoThreadsGiveIdenticalResults) {
 }
 
 }  // namespace
+
+namespace {
+
+// A transmission limit's fields as the front door takes them (at `threshold`).
+std::vector<criteria::CriterionField> transmission_fields(int s1, int s2, const std::string& name, double threshold,
+                                                          double force = 0.0) {
+  mechanisms::Design d;
+  d.path = "dextar.json";
+  d.model = std::make_shared<mechanisms::FiveBar>(dextar(s1, s2));
+  if (force > 0.0) d.criteria.load = mechanisms::Load{force, 0.0};
+  return criteria::fields_for(d, name, threshold);
+}
+
+}  // namespace
+
+// The pressure angle α <= t and the reaction f / |sin ε| <= R are |sin ε| >= q
+// (q = cos t, f / R), taken as ±cos ε <= √(1 - q²) for q >= 1/√2 and as
+// -|det A| <= -q l_1 l_2 below (docs/theory/level_sets.md, "Transmission
+// limits"). Both forms are the set of the criterion (point by point against
+// the mechanism's own evaluation), and their certified areas meet those of
+// the cos²ε form they replace, with the target width.
+TEST(LevelSets, TransmissionLimitFormsAreTheCriterionsSetAndMeetTheCosSquaredForm) {
+  struct Case {
+    std::string name;
+    double threshold, force;
+    std::size_t fields;
+    std::string key;
+  };
+  const std::vector<Case> cases = {{"pressure_angle", 20.0, 0.0, 2, "five_bar.coseps"},
+                                   {"pressure_angle", 44.0, 0.0, 2, "five_bar.coseps"},
+                                   {"pressure_angle", 46.0, 0.0, 1, "five_bar.negabssin"},
+                                   {"pressure_angle", 80.0, 0.0, 1, "five_bar.negabssin"},
+                                   {"reaction", 110.0, 100.0, 2, "five_bar.coseps"},  // q = 0.91
+                                   {"reaction", 400.0, 100.0, 1, "five_bar.negabssin"}};
+  const auto m = dextar(1, -1);
+  const geometry::Region ws = m.workspace();
+  const Box w = ws.bbox();
+  for (const Case& k : cases) {
+    const auto fs = transmission_fields(1, -1, k.name, k.threshold, k.force);
+    ASSERT_EQ(fs.size(), k.fields) << k.name << " " << k.threshold;
+    EXPECT_EQ(fs.front().key, k.key) << k.name << " " << k.threshold;
+    if (k.fields == 2) {
+      EXPECT_EQ(fs.back().key, "five_bar.negcoseps");
+    }
+    const auto old = k.name == "reaction" ? criteria::five_bar_reaction(m, k.force) : criteria::five_bar_pressure_angle(m);
+    // Point by point: inside every new constraint <=> criterion <= threshold
+    // (away from the curve, where rounding decides) <=> inside the cos² one.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> ux(w.min.x, w.max.x), uy(w.min.y, w.max.y);
+    int in = 0, out = 0;
+    for (int n = 0; n < 4000; ++n) {
+      const Point p{ux(rng), uy(rng)};
+      const double v = fs.front().value(p);
+      if (!std::isfinite(v) || std::abs(v - k.threshold) < 1e-6 * k.threshold) continue;
+      bool inside = true;
+      for (const auto& f : fs) inside = inside && f.surrogate->value(p) <= f.level(k.threshold);
+      EXPECT_EQ(inside, v <= k.threshold) << k.name << " " << k.threshold << " at " << p.x << ", " << p.y;
+      EXPECT_EQ(inside, old.surrogate->value(p) <= old.level(k.threshold)) << k.name << " " << k.threshold;
+      (inside ? in : out)++;
+    }
+    EXPECT_GT(in, 100) << k.name << " " << k.threshold;
+    EXPECT_GT(out, 100) << k.name << " " << k.threshold;
+    // Areas in (x, y) (no charts): both forms' bounds meet.
+    if (k.threshold == 44.0 || k.threshold == 46.0) continue;  // the same forms as 20 and 80
+    certified::LevelSetOptions o;
+    o.relative_tolerance = 1e-6;
+    std::vector<certified::Constraint> cs;
+    for (const auto& f : fs) cs.push_back({f.surrogate.get(), f.level(k.threshold)});
+    const auto now = certified::sublevel_set(cs, ws, fs.front().within_test, o).region;
+    const auto before = certified::sublevel_set(*old.surrogate, old.level(k.threshold), ws, old.within_test, o).region;
+    EXPECT_LE(now.area_lower, before.area_upper) << k.name << " " << k.threshold;
+    EXPECT_GE(now.area_upper, before.area_lower) << k.name << " " << k.threshold;
+    EXPECT_LE(now.width(), 1e-6 * now.area_upper) << k.name << " " << k.threshold;
+    EXPECT_GT(now.area_lower, 0.05 * ws.area()) << k.name << " " << k.threshold;
+  }
+}

@@ -17,7 +17,8 @@
 
 namespace pkmws::criteria {
 
-std::vector<CriterionField> fields_for(const mechanisms::Design& file, const std::string& name) {
+std::vector<CriterionField> fields_for(const mechanisms::Design& file, const std::string& name,
+                                       std::optional<double> threshold) {
   if (name != "pressure_angle" && name != "reaction" && name != "velocity_ratio" && name != "condition_number") {
     throw InputError("unknown criterion \"" + name +
                      "\" (expected pressure_angle, reaction, velocity_ratio or condition_number)");
@@ -25,7 +26,14 @@ std::vector<CriterionField> fields_for(const mechanisms::Design& file, const std
   const auto capability = file.model->capability<CriterionFields>();
   if (!capability) throw InputError(file.path + ": certified level sets: " + capability.reason());
   try {
-    return capability->fields(name, file.criteria, file.reaction_legs);
+    mechanisms::Criteria criteria = file.criteria;
+    if (threshold) {
+      if (name == "pressure_angle") criteria.max_pressure_angle_deg = threshold;
+      if (name == "reaction") criteria.max_reaction_N = threshold;
+      if (name == "velocity_ratio") criteria.max_velocity_ratio = threshold;
+      if (name == "condition_number") criteria.max_condition_number = threshold;
+    }
+    return capability->fields(name, criteria, file.reaction_legs);
   } catch (const std::invalid_argument& e) {
     throw InputError(file.path + ": " + e.what());
   }
@@ -107,7 +115,7 @@ std::shared_ptr<const mechanisms::Mechanism> limited_mechanism(const mechanisms:
       }
       continue;
     }
-    for (CriterionField& f : fields_for(file, l.name)) {
+    for (CriterionField& f : fields_for(file, l.name, l.threshold)) {
       const double level = f.level(l.threshold);
       fields.emplace_back(std::move(f), level);
     }
@@ -336,7 +344,7 @@ LimitedWorkspace limited_workspace(const mechanisms::Design& file, const std::ve
       min_distance = min_distance ? std::max(*min_distance, l.threshold) : l.threshold;
       continue;
     }
-    for (CriterionField& f : fields_for(file, l.name)) {
+    for (CriterionField& f : fields_for(file, l.name, l.threshold)) {
       const double level = f.level(l.threshold);
       auto it = by_key.find(f.key);
       if (it == by_key.end()) {

@@ -108,23 +108,37 @@ using geometry::Point;
 // The criteria's values come from the mechanism's own evaluation in the file's
 // working mode (the first answer of evaluate()).
 //   template <class T> T singular_det(const T& x, const T& y) const;  // u_1 x u_2 of the last links
+//   double eps_scale() const;  // |u_1| |u_2|: sin ε = singular_det / eps_scale
+// Surrogates: cos²ε, σ_max², κ's, det A, and the transmission limits' cos ε,
+// -cos ε and -|det A| (sine_bound_fields).
 template <class Model> struct PointPlatformField {
-  enum class What { cos2eps, ratio2, kappa, det };
+  enum class What { cos2eps, ratio2, kappa, det, coseps, negcoseps, negabssin };
   Model model;
   What what = What::cos2eps;
   template <class T> T eval(const T& x, const T& y) const {
     if (what == What::det) return model.singular_det(x, y);
     if (what == What::ratio2) return detail::sigma_max2(model.rows(x, y));
     if (what == What::kappa) return detail::kappa_surrogate(model.rows(x, y));
+    if (what == What::coseps) return model.cos_eps(x, y);
+    if (what == What::negcoseps) return -model.cos_eps(x, y);
+    if (what == What::negabssin) {
+      using certified::abs;
+      using std::abs;
+      return -abs(model.singular_det(x, y));
+    }
     return certified::sqr(model.cos_eps(x, y));
   }
-  // σ_max² also needs distinct singular values.
+  // σ_max² also needs distinct singular values; |det A| is smooth only off det A = 0.
   certified::CellState domain(const geometry::Box& b) const {
     const certified::CellState d = model.domain(b);
     if (d == certified::CellState::inside && what == What::ratio2 &&
         !detail::distinct_singular_values(
             model.rows(certified::Interval(b.min.x, b.max.x), certified::Interval(b.min.y, b.max.y)))) {
       return certified::CellState::undecided;  // near an isotropic point
+    }
+    if (d == certified::CellState::inside && what == What::negabssin &&
+        model.singular_det(certified::Interval(b.min.x, b.max.x), certified::Interval(b.min.y, b.max.y)).contains_zero()) {
+      return certified::CellState::undecided;
     }
     return d;
   }
@@ -238,7 +252,8 @@ std::function<std::shared_ptr<const certified::ScalarField>(const std::string&)>
   return [model = std::move(model), kind = std::move(kind)](const std::string& key) -> std::shared_ptr<const certified::ScalarField> {
     using What = typename PointPlatformField<ChartModel>::What;
     const std::pair<const char*, What> suffixes[] = {
-        {".cos2eps", What::cos2eps}, {".vratio", What::ratio2}, {".kappa", What::kappa}, {".det", What::det}};
+        {".cos2eps", What::cos2eps}, {".vratio", What::ratio2}, {".kappa", What::kappa}, {".det", What::det},
+        {".coseps", What::coseps},   {".negcoseps", What::negcoseps}, {".negabssin", What::negabssin}};
     for (const auto& [suffix, what] : suffixes) {
       if (key == kind + suffix) {
         return std::make_shared<certified::TemplateField<PointPlatformField<ChartModel>>>(PointPlatformField<ChartModel>{model, what});
@@ -246,6 +261,43 @@ std::function<std::shared_ptr<const certified::ScalarField>(const std::string&)>
     }
     return nullptr;
   };
+}
+
+// A transmission limit |sin ε| >= q (the pressure angle α <= t: q = cos t,
+// [Briot]; the reaction f / |sin ε| <= R: q = f / R) as the better
+// conditioned of two smooth forms of the same set, in place of the cos²ε of
+// `base` (docs/theory/level_sets.md, "Transmission limits"): on the curve
+// |sin ε| = q, ∇cos ε = -sin ε ∇ε has the factor q and ∇sin ε = cos ε ∇ε the
+// factor √(1 - q²), while cos²ε's gradient 2 |sin ε cos ε| |∇ε| is small at
+// both ends (cos²ε has a maximum on the singularity, a minimum where ε = 90°):
+//  - q >= 1/√2 (α <= 45°): cos ε <= √(1 - q²) and -cos ε <= √(1 - q²);
+//  - q < 1/√2: -|det A| <= -q l_1 l_2 (det A = l_1 l_2 sin ε, smooth off the
+//    singularity det A = 0, which the curve keeps away from).
+// `threshold` (the limit) picks the form; the levels hold for any threshold.
+template <class Model>
+std::vector<CriterionField> sine_bound_fields(const Model& model, CriterionField base, const std::string& kind,
+                                              double threshold, std::function<double(double)> q_of) {
+  using What = typename PointPlatformField<Model>::What;
+  const auto field = [&model](What what) {
+    return std::make_shared<certified::TemplateField<PointPlatformField<Model>>>(PointPlatformField<Model>{model, what});
+  };
+  if (q_of(threshold) >= std::sqrt(0.5)) {
+    CriterionField minus = base;
+    base.key = kind + ".coseps";
+    base.surrogate = field(What::coseps);
+    base.level = [q_of](double t) {
+      const double q = q_of(t);
+      return q > 1.0 ? -1.0 : std::sqrt((1.0 - q) * (1.0 + q));  // q > 1: empty
+    };
+    minus.key = kind + ".negcoseps";
+    minus.surrogate = field(What::negcoseps);
+    minus.level = base.level;
+    return {base, minus};
+  }
+  base.key = kind + ".negabssin";
+  base.surrogate = field(What::negabssin);
+  base.level = [q_of, scale = model.eps_scale()](double t) { return -q_of(t) * scale; };
+  return {base};
 }
 
 // The capability CriterionFields of a point platform (valid while the mechanism lives).
@@ -256,7 +308,19 @@ template <class Model> class PointPlatformFields final : public CriterionFields 
   std::vector<CriterionField> fields(const std::string& name, const mechanisms::Criteria& criteria,
                                      const std::vector<int>& /*reaction_legs*/) const override {
     if (name == "reaction" && !criteria.load) throw std::invalid_argument("the reaction criterion needs criteria.load");
-    return {point_platform_field(model_, *m_, kind_, name, criteria.load ? criteria.load->force_N : 0.0)};
+    const double force = criteria.load ? criteria.load->force_N : 0.0;
+    CriterionField f = point_platform_field(model_, *m_, kind_, name, force);
+    if (name == "pressure_angle" && criteria.max_pressure_angle_deg) {
+      return sine_bound_fields(model_, std::move(f), kind_, *criteria.max_pressure_angle_deg, [](double alpha_deg) {
+        return std::cos(std::clamp(alpha_deg, 0.0, 90.0) * detail::deg);
+      });
+    }
+    if (name == "reaction" && criteria.max_reaction_N) {
+      return sine_bound_fields(model_, std::move(f), kind_, *criteria.max_reaction_N, [force](double r_max) {
+        return r_max > 0.0 ? force / r_max : std::numeric_limits<double>::infinity();
+      });
+    }
+    return {f};
   }
   CriterionField singular_determinant(const mechanisms::Criteria& /*criteria*/) const override {
     return point_platform_singular(model_, kind_);

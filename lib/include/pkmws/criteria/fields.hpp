@@ -130,8 +130,13 @@ struct CriterionFields {
 /// sub-level sets are intersected; for the 3-RPR also the assembly mode of the
 /// workspace's centre). `name`: "pressure_angle", "reaction" or (biglide)
 /// "velocity_ratio".
+/// `threshold`: the limit they will be used at, in place of the file's (a
+/// field's form may depend on it: a point platform's transmission limits take
+/// the better conditioned of two forms of the same set; any form holds for
+/// every threshold through its `level`).
 /// Throws InputError (pkmws/core/error.hpp) when the mechanism does not support it.
-std::vector<CriterionField> fields_for(const mechanisms::Design& file, const std::string& name);
+std::vector<CriterionField> fields_for(const mechanisms::Design& file, const std::string& name,
+                                       std::optional<double> threshold = std::nullopt);
 
 /// One limit of the file's `criteria`: a criterion and its threshold.
 struct Limit {

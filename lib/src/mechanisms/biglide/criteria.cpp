@@ -105,6 +105,7 @@ struct BiglideRods {
     const auto p = legs.parts(x, y);
     return (p.w1 * p.w2 - p.h1 * p.h2) / (l1 * l2);  // u_1 . u_2 with u_2,y = y - B = -h_2
   }
+  double eps_scale() const { return l1 * l2; }  // sin ε = singular_det / (l_1 l_2)
   template <class T> Rows2<T> rows(const T& x, const T& y) const {
     const auto p = legs.parts(x, y);
     return {T(1.0), p.dq1, T(1.0), p.dq2};

@@ -60,7 +60,33 @@ struct FiveBarCosEps {
     g.uy = one_minus_a * g.wy - s[i] * (b * g.wx);
     return g;
   }
+  // The same for jets over a box, cheaper: 1 - a and b are functions of ρ = r²
+  // alone, A(ρ) = ½ - c/(2ρ) with c = l1² - l2², B(ρ) = √D(ρ)/(2ρ) with
+  // D = ((l1 + l2)² - ρ)(ρ - (l1 - l2)²), each composed with ρ's jet from its
+  // closed-form first and second derivatives (derived; two compositions in
+  // place of the generic chain's reciprocal, square root and two products).
+  Leg<certified::Jet<Interval>> leg(std::size_t i, const certified::Jet<Interval>& x,
+                                    const certified::Jet<Interval>& y) const {
+    using certified::max;
+    using certified::sqr;
+    using certified::sqrt;
+    const Interval p(l1[i]), q(l2[i]);
+    Leg<certified::Jet<Interval>> g{x - Interval(base[i].x), y - Interval(base[i].y), {}, {}};
+    const certified::Jet<Interval> rho = sqr(g.wx) + sqr(g.wy);
+    const Interval r = rho.v, c = (p - q) * (p + q), big = sqr(p + q), small = sqr(p - q);
+    const Interval h = Interval(0.5) / r, h1 = -(Interval(2.0) * sqr(h)), h2 = Interval(8.0) * sqr(h) * h;  // 1/(2ρ)
+    const Interval d = (big - r) * (r - small), d1 = big + small - Interval(2.0) * r;  // D'' = -2
+    const Interval sd = sqrt(max(d, 0.0)), sd1 = d1 / (Interval(2.0) * sd), sd2 = -(Interval(1.0) + sqr(sd1)) / sd;
+    const certified::Jet<Interval> one_minus_a = certified::compose(rho, Interval(0.5) - c * h, -(c * h1), -(c * h2));
+    const certified::Jet<Interval> b =
+        certified::compose(rho, sd * h, sd1 * h + sd * h1, sd2 * h + Interval(2.0) * (sd1 * h1) + sd * h2);
+    g.ux = one_minus_a * g.wx + s[i] * (b * g.wy);
+    g.uy = one_minus_a * g.wy - s[i] * (b * g.wx);
+    return g;
+  }
   template <class T> T cos_eps(const T& x, const T& y) const { return cos_eps_of(leg(0, x, y), leg(1, x, y)); }
+  // |u_1| |u_2|: sin ε = det A / eps_scale() (det A = singular_det).
+  double eps_scale() const { return l2[0] * l2[1]; }
   template <class T> T cos_eps_of(const Leg<T>& g0, const Leg<T>& g1) const {
     using S = certified::scalar_t<T>;
     return (g0.ux * g1.ux + g0.uy * g1.uy) / (S(l2[0]) * S(l2[1]));
@@ -206,6 +232,7 @@ struct FiveBarChart {
     const auto g = legs(u, v);
     return plane.cos_eps_of(g[0], g[1]);
   }
+  double eps_scale() const { return plane.eps_scale(); }
   template <class T> T singular_det(const T& u, const T& v) const {
     const auto g = legs(u, v);
     return FiveBarCosEps::singular_det_of(g[0], g[1]);

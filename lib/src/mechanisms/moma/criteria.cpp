@@ -62,6 +62,7 @@ struct MomaTransmission {
     }
     return {ux, uy};
   }
+  double eps_scale() const { return l[0] * l[1]; }  // sin ε = singular_det / (l_1 l_2)
   // cos ε = (P - S_1).(P - S_2) / (l_1 l_2).
   template <class T> T cos_eps(const T& x, const T& y) const {
     using S = certified::scalar_t<T>;
