@@ -167,6 +167,14 @@ TEST(CriteriaFields, JetsMatchFiniteDifferencesAndIntervalsEnclose) {
   const auto fb = criteria::five_bar_pressure_angle(dextar(1, -1));
   const auto rpr = criteria::three_rpr_reaction(paminsa(25 * deg), Load{100.0, 5.0}, 0);
   const auto rpa = criteria::three_rpr_pressure_angle(paminsa(25 * deg), 1);
+  // The transmission limits' forms (±cos ε at 20°, -|det A| at 80°).
+  mechanisms::Design d;
+  d.path = "dextar.json";
+  d.model = std::make_shared<mechanisms::FiveBar>(dextar(1, -1));
+  std::vector<criteria::CriterionField> forms = criteria::fields_for(d, "pressure_angle", 20.0);
+  forms.push_back(criteria::fields_for(d, "pressure_angle", 80.0).front());
+  ASSERT_EQ(forms.size(), 3u);
+  int checked_forms = 0;
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-0.15, 0.15);
   int checked_fb = 0, checked_rpr = 0;
@@ -179,6 +187,11 @@ TEST(CriteriaFields, JetsMatchFiniteDifferencesAndIntervalsEnclose) {
       pkmws::test::check_field(*fb.surrogate, p, 1e-5, box);
       ++checked_fb;
     }
+    for (const auto& f : forms) {
+      if (f.surrogate->domain(box) != certified::CellState::inside) continue;
+      pkmws::test::check_field(*f.surrogate, p, 1e-5, box);
+      ++checked_forms;
+    }
     Box b2 = box;
     if (rpr.surrogate->domain(b2) == certified::CellState::inside) {
       pkmws::test::check_field(*rpa.surrogate, p, 1e-5, b2);
@@ -189,6 +202,7 @@ TEST(CriteriaFields, JetsMatchFiniteDifferencesAndIntervalsEnclose) {
     }
   }
   EXPECT_GT(checked_fb, 30);
+  EXPECT_GT(checked_forms, 80);
   EXPECT_GT(checked_rpr, 30);
 }
 

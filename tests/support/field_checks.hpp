@@ -50,6 +50,15 @@ void check_field(const Field& f, geometry::Point p, double h, const geometry::Bo
       EXPECT_TRUE(jb.dx.contains(jq.dx) && jb.dy.contains(jq.dy));
       EXPECT_TRUE(gb.dx.contains(jq.dx) && gb.dy.contains(jq.dy));
       EXPECT_TRUE(jb.dxx.contains(jq.dxx) && jb.dxy.contains(jq.dxy) && jb.dyy.contains(jq.dyy));
+      // Over the degenerate box {q}: the interval jet is tight, so a wrong
+      // term its box enclosure would hide shows here (within rounding).
+      const auto jp = f.jet(geometry::Box{q, q});
+      const auto at = [](const certified::Interval& i, double x) {
+        const double slack = 1e-9 * (1.0 + std::abs(x));
+        return i.lo - slack <= x && x <= i.hi + slack;
+      };
+      EXPECT_TRUE(at(jp.v, jq.v) && at(jp.dx, jq.dx) && at(jp.dy, jq.dy));
+      EXPECT_TRUE(at(jp.dxx, jq.dxx) && at(jp.dxy, jq.dxy) && at(jp.dyy, jq.dyy));
     }
   }
 }
