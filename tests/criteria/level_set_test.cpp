@@ -507,16 +507,13 @@ TEST(LevelSets, OneAndTwoThreadsGiveIdenticalResults) {
   EXPECT_GT(r[0].undecided_cells, 1000u);  // the case has the unbalanced work the tasks are for
 }
 
-}  // namespace
-
-namespace {
-
-// A transmission limit's fields as the front door takes them (at `threshold`).
-std::vector<criteria::CriterionField> transmission_fields(int s1, int s2, const std::string& name, double threshold,
+// A transmission limit's fields of the DexTAR (+1, -1) as the front door
+// takes them (at `threshold`).
+std::vector<criteria::CriterionField> transmission_fields(const std::string& name, double threshold,
                                                           double force = 0.0) {
   mechanisms::Design d;
   d.path = "dextar.json";
-  d.model = std::make_shared<mechanisms::FiveBar>(dextar(s1, s2));
+  d.model = std::make_shared<mechanisms::FiveBar>(dextar(1, -1));
   if (force > 0.0) d.criteria.load = mechanisms::Load{force, 0.0};
   return criteria::fields_for(d, name, threshold);
 }
@@ -546,7 +543,7 @@ TEST(LevelSets, TransmissionLimitFormsAreTheCriterionsSetAndMeetTheCosSquaredFor
   const geometry::Region ws = m.workspace();
   const Box w = ws.bbox();
   for (const Case& k : cases) {
-    const auto fs = transmission_fields(1, -1, k.name, k.threshold, k.force);
+    const auto fs = transmission_fields(k.name, k.threshold, k.force);
     ASSERT_EQ(fs.size(), k.fields) << k.name << " " << k.threshold;
     EXPECT_EQ(fs.front().key, k.key) << k.name << " " << k.threshold;
     if (k.fields == 2) {

@@ -144,6 +144,13 @@ template <class Model> struct PointPlatformField {
   }
 };
 
+// The surrogate `what` of a point platform (or of its chart) as a ScalarField.
+template <class Model>
+std::shared_ptr<const certified::ScalarField> platform_surrogate(const Model& model,
+                                                                 typename PointPlatformField<Model>::What what) {
+  return std::make_shared<certified::TemplateField<PointPlatformField<Model>>>(PointPlatformField<Model>{model, what});
+}
+
 // The field of criterion `name` ("pressure_angle", "reaction" with the load's
 // force, "velocity_ratio", "condition_number") of a point platform; `kind`
 // prefixes its key.
@@ -156,7 +163,7 @@ CriterionField point_platform_field(const Model& model, const mechanisms::Mechan
                                                  : What::cos2eps;
   CriterionField c;
   c.name = name;
-  c.surrogate = std::make_shared<certified::TemplateField<PointPlatformField<Model>>>(PointPlatformField<Model>{model, what});
+  c.surrogate = platform_surrogate(model, what);
   c.within_test = [model](const geometry::Box& b) { return model.within(b); };
   mechanisms::Criteria with_load;
   if (name == "reaction") with_load.load = mechanisms::Load{force_N, 0.0};
@@ -256,7 +263,7 @@ std::function<std::shared_ptr<const certified::ScalarField>(const std::string&)>
         {".coseps", What::coseps},   {".negcoseps", What::negcoseps}, {".negabssin", What::negabssin}};
     for (const auto& [suffix, what] : suffixes) {
       if (key == kind + suffix) {
-        return std::make_shared<certified::TemplateField<PointPlatformField<ChartModel>>>(PointPlatformField<ChartModel>{model, what});
+        return platform_surrogate(model, what);
       }
     }
     return nullptr;
@@ -278,24 +285,21 @@ template <class Model>
 std::vector<CriterionField> sine_bound_fields(const Model& model, CriterionField base, const std::string& kind,
                                               double threshold, std::function<double(double)> q_of) {
   using What = typename PointPlatformField<Model>::What;
-  const auto field = [&model](What what) {
-    return std::make_shared<certified::TemplateField<PointPlatformField<Model>>>(PointPlatformField<Model>{model, what});
-  };
   if (q_of(threshold) >= std::sqrt(0.5)) {
     CriterionField minus = base;
     base.key = kind + ".coseps";
-    base.surrogate = field(What::coseps);
+    base.surrogate = platform_surrogate(model, What::coseps);
     base.level = [q_of](double t) {
       const double q = q_of(t);
       return q > 1.0 ? -1.0 : std::sqrt((1.0 - q) * (1.0 + q));  // q > 1: empty
     };
     minus.key = kind + ".negcoseps";
-    minus.surrogate = field(What::negcoseps);
+    minus.surrogate = platform_surrogate(model, What::negcoseps);
     minus.level = base.level;
     return {base, minus};
   }
   base.key = kind + ".negabssin";
-  base.surrogate = field(What::negabssin);
+  base.surrogate = platform_surrogate(model, What::negabssin);
   base.level = [q_of, scale = model.eps_scale()](double t) { return -q_of(t) * scale; };
   return {base};
 }
