@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <tuple>
 #include <type_traits>
@@ -66,16 +67,78 @@ template <class T> Cubic<T> gram_invariants(const T (&a)[3][3], const T (&w)[3])
   return {c2, c1, sqr(det) / ((w[0] * w[1]) * w[2])};
 }
 
+inline certified::Interval tighter(const certified::Interval& a, const certified::Interval& b) {
+  const certified::Interval both = certified::intersect(a, b);
+  return both.lo <= both.hi ? both : a;
+}
+
+// The same with unit weights (rows m_j = a_j).
+template <class T> Cubic<T> gram_invariants(const T (&a)[3][3]) {
+  using certified::sqr;
+  T c2 = sqr(a[0][0]) + sqr(a[0][1]) + sqr(a[0][2]);
+  for (int j = 1; j < 3; ++j) c2 = c2 + (sqr(a[j][0]) + sqr(a[j][1]) + sqr(a[j][2]));
+  T c1 = T(0.0);
+  T cof[3];  // a_1 x a_2: the cofactors of row 0
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i + 1; j < 3; ++j) {
+      const T w0 = a[i][1] * a[j][2] - a[i][2] * a[j][1];
+      const T w1 = a[i][2] * a[j][0] - a[i][0] * a[j][2];
+      const T w2 = a[i][0] * a[j][1] - a[i][1] * a[j][0];
+      c1 = c1 + (sqr(w0) + sqr(w1) + sqr(w2));
+      if (i == 1) {
+        cof[0] = w0;
+        cof[1] = w1;
+        cof[2] = w2;
+      }
+    }
+  }
+  return {c2, c1, sqr(a[0][0] * cof[0] + a[0][1] * cof[1] + a[0][2] * cof[2])};
+}
+
+// The inverted point u = d / |d|² of d = (x - e_x, y - e_y) over a box, as
+// gradients or jets (T = Grad<Interval> or Jet<Interval>) with derivatives in
+// closed form: w = u_x + i u_y = 1 / conj(z), z = d_x + i d_y, is
+// anti-holomorphic, so ∂w/∂x = -w², ∂w/∂y = i w², ∂²w/∂x² = 2w³,
+// ∂²w/∂x∂y = -2i w³, ∂²w/∂y² = -2w³. Each is a power of u's enclosure, whose
+// width is u's relative width times its size; the product rule through 1/|d|²
+// instead adds terms of size |d|⁻⁴ that cancel, and its enclosures of a row's
+// Hessian were ten times wider than these (the 3-RPR's rows: leg angles).
+// u itself: the natural form, tightened by the mean-value form about the
+// box's centre.
+template <class T> std::array<T, 2> inverted_point(const certified::Interval& x, const certified::Interval& y, double ex, double ey) {
+  using certified::Interval;
+  using certified::sqr;
+  const auto inverse = [&](const Interval& dx, const Interval& dy) {
+    const Interval r2 = sqr(dx) + sqr(dy);
+    return std::array<Interval, 2>{dx / r2, dy / r2};
+  };
+  const double xm = x.mid(), ym = y.mid();
+  std::array<Interval, 2> u = inverse(x - Interval(ex), y - Interval(ey));
+  const auto square = [](const std::array<Interval, 2>& v) {  // w²
+    return std::array<Interval, 2>{sqr(v[0]) - sqr(v[1]), 2.0 * (v[0] * v[1])};
+  };
+  if (x.width() > 0.0 || y.width() > 0.0) {
+    const std::array<Interval, 2> um = inverse(Interval(xm) - Interval(ex), Interval(ym) - Interval(ey));
+    const std::array<Interval, 2> w2 = square(u);
+    const Interval hx = x - Interval(xm), hy = y - Interval(ym);
+    u[0] = tighter(u[0], um[0] - w2[0] * hx - w2[1] * hy);
+    u[1] = tighter(u[1], um[1] - w2[1] * hx + w2[0] * hy);
+  }
+  const std::array<Interval, 2> w2 = square(u);
+  if constexpr (std::is_same_v<T, certified::Grad<Interval>>) {
+    return {T{u[0], -w2[0], -w2[1]}, T{u[1], -w2[1], w2[0]}};
+  } else {
+    const Interval w3r = w2[0] * u[0] - w2[1] * u[1], w3i = w2[0] * u[1] + w2[1] * u[0];
+    return {T{u[0], -w2[0], -w2[1], twice(w3r), twice(w3i), -twice(w3r)},
+            T{u[1], -w2[1], w2[0], twice(w3i), -twice(w3r), -twice(w3i)}};
+  }
+}
+
 enum class Root { largest, smallest };
 
 template <class S> S cubic_value(const Cubic<S>& c, const S& mu) { return ((mu - c.c2) * mu + c.c1) * mu - c.c0; }
 template <class S> S cubic_slope(const Cubic<S>& c, const S& mu) { return (3.0 * mu - 2.0 * c.c2) * mu + c.c1; }
 template <class S> S cubic_curvature(const Cubic<S>& c, const S& mu) { return 6.0 * mu - 2.0 * c.c2; }
-
-inline certified::Interval tighter(const certified::Interval& a, const certified::Interval& b) {
-  const certified::Interval both = certified::intersect(a, b);
-  return both.lo <= both.hi ? both : a;
-}
 
 // Where the search for a root's ends starts (root_start): the centre's root r
 // and the first step.
@@ -118,6 +181,8 @@ struct CubicBox {
   mutable std::array<RootStart, 2> starts{};
   mutable std::array<bool, 4> has_end{};
   mutable std::array<double, 4> ends{};
+  mutable bool has_middle = false;  // middle_root, once searched
+  mutable certified::Interval middle{0.0, -1.0};  // empty: not proved
 };
 
 // The root in double: trigonometric form of the depressed cubic (three real
@@ -192,20 +257,30 @@ inline double root_end_search(Root which, bool upper_end, const CubicBox& box, c
   const double fallback_end = which == Root::largest ? (upper_end ? top : std::max(0.0, c.c2.lo / 3.0))
                                                      : (upper_end ? std::max(0.0, top / 3.0) : 0.0);
   const double r = start.r;
-  double delta = start.first;
-  for (int attempt = 0; attempt < 16; ++attempt, delta *= 4.0) {
+  const auto proves = [&](double delta) {
+    const Interval u(upper_end ? r + delta : r - delta);
+    if (which == Root::largest) {
+      return upper_end ? box.value(u).lo > 0.0 && cubic_slope(c, u).lo > 0.0 && cubic_curvature(c, u).lo > 0.0
+                       : box.value(u).hi < 0.0;
+    }
+    return upper_end ? box.value(u).lo > 0.0
+                     : box.value(u).hi < 0.0 && cubic_slope(c, u).lo > 0.0 && cubic_curvature(c, u).hi < 0.0;
+  };
+  double delta = start.first, failed = 0.0;
+  for (int attempt = 0; attempt < 16; ++attempt, failed = delta, delta *= 4.0) {
     const double at = upper_end ? r + delta : r - delta;
     if (upper_end ? at >= fallback_end : at <= fallback_end) break;  // no better than the fallback
-    const Interval u(at);
-    bool proved = false;
-    if (which == Root::largest) {
-      proved = upper_end ? box.value(u).lo > 0.0 && cubic_slope(c, u).lo > 0.0 && cubic_curvature(c, u).lo > 0.0
-                         : box.value(u).hi < 0.0;
-    } else {
-      proved = upper_end ? box.value(u).lo > 0.0
-                         : box.value(u).hi < 0.0 && cubic_slope(c, u).lo > 0.0 && cubic_curvature(c, u).hi < 0.0;
+    if (proves(delta)) {
+      // Between the last step that failed and this one, two bisections: the
+      // steps grow 4×, and the first that holds may be that much wider than
+      // the root's spread.
+      for (int k = 0; k < 2; ++k) {
+        const double mid = 0.5 * (failed + delta);
+        if (proves(mid)) delta = mid;
+        else failed = mid;
+      }
+      return upper_end ? r + delta : r - delta;
     }
-    if (proved) return at;
   }
   return fallback_end;
 }
@@ -240,6 +315,50 @@ inline certified::Interval cubic_root(Root which, const CubicBox& box) {
   return lo <= hi ? Interval(lo, hi) : Interval(0.0, std::max(0.0, c.c2.hi));
 }
 
+// The middle root λ_2 over a box, [a, b] with u_3 < a < b < l_1 (u_3 λ_3's
+// proved upper end, l_1 λ_1's lower end), p(a) > 0 and p(b) < 0: p is positive
+// on (λ_3, λ_2) and negative on (λ_2, λ_1), so λ_3 < a < λ_2 < b < λ_1 for every
+// cubic of the box. Searched from the centre's λ_2 = c_2 - λ_1 - λ_3 outwards
+// like the other roots' ends; empty (lo > hi) where a side is not proved.
+inline certified::Interval middle_root(const CubicBox& box) {
+  using certified::Interval;
+  if (box.has_middle) return box.middle;
+  box.has_middle = true;
+  const Cubic<Interval>& c = box.c;
+  const double u3 = root_end(Root::smallest, true, box), l1 = root_end(Root::largest, false, box);
+  if (!(u3 < l1) || !c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return box.middle;
+  const Cubic<double> mid{c.c2.mid(), c.c1.mid(), c.c0.mid()};
+  const double r = std::clamp(mid.c2 - root_start(Root::largest, box).r - root_start(Root::smallest, box).r, u3, l1);
+  double spread = 0.5 * (c.c2.width() * r * r + c.c1.width() * std::abs(r) + c.c0.width());
+  if (box.has_gradients) spread = std::min(spread, 0.5 * box.moved(Interval(r)).width());
+  const double slope = std::abs(cubic_slope(mid, r));
+  const double first = std::max(slope > 0.0 ? std::min(spread / slope, l1 - u3) : l1 - u3, 1e-12 * std::max(std::abs(r), 1e-300));
+  // One side: the nearest point r ± δ (steps 4×, then two bisections) with
+  // the sign, inside (u3, l1); NaN where none.
+  const auto side = [&](bool upper) {
+    const auto proves = [&](double delta) {
+      const double at = upper ? r + delta : r - delta;
+      if (!(at > u3 && at < l1)) return false;
+      const Interval v = box.value(Interval(at));
+      return upper ? v.hi < 0.0 : v.lo > 0.0;
+    };
+    double delta = first, failed = 0.0;
+    for (int attempt = 0; attempt < 12 && delta < l1 - u3; ++attempt, failed = delta, delta *= 4.0) {
+      if (!proves(delta)) continue;
+      for (int k = 0; k < 2; ++k) {
+        const double m = 0.5 * (failed + delta);
+        if (proves(m)) delta = m;
+        else failed = m;
+      }
+      return upper ? r + delta : r - delta;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  const double a = side(false), b = side(true);
+  if (a < b) box.middle = Interval(a, b);
+  return box.middle;
+}
+
 // p'(λ) over a box, λ ∈ l the root `which` of every cubic with coefficients
 // in c: the natural form, raised by a lower bound from the factorisations
 //   p'(λ_1) = (λ_1 - λ_2)(λ_1 - λ_3),  p'(λ_3) = (λ_1 - λ_3)(λ_2 - λ_3)
@@ -249,11 +368,31 @@ inline certified::Interval cubic_root(Root which, const CubicBox& box) {
 //    between λ_2 and λ_1, so p'(λ_1) >= (l.lo - s)(l.lo - u_3);
 //  * λ_3: t > l.hi with p(t) > 0 and t below λ_1's proved lower end l_1 lies
 //    between λ_3 and λ_2, so p'(λ_3) >= (l_1 - l.hi)(t - l.hi).
+// Over a box with its mean-value form (a CubicBox with gradients), where λ_2
+// is enclosed (middle_root), the factorisations themselves with the three
+// roots' enclosures bound p' on both sides first.
 inline certified::Interval root_slope(Root which, const CubicBox& box, const certified::Interval& l) {
   using certified::Interval;
   const Cubic<Interval>& c = box.c;
-  const Interval natural = cubic_slope(c, l);
-  if (natural.lo > 0.0 || !l.finite() || !c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return natural;
+  Interval natural = cubic_slope(c, l);
+  if (!l.finite() || !c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return natural;
+  // The factorisations with λ_2 enclosed: p'(λ_1) = (λ_1 - λ_2)(λ_1 - λ_3),
+  // p'(λ_3) = (λ_1 - λ_3)(λ_2 - λ_3), each factor positive where the
+  // enclosures are apart. Without cancellation: the natural form's width is
+  // of the size of c_2 |λ| |Λ| while these are of the roots' own widths.
+  if (box.has_gradients) {
+    const Interval m2 = middle_root(box);
+    if (m2.lo <= m2.hi) {
+      const bool largest = which == Root::largest;
+      const Interval l1 = largest ? l : Interval(root_end(Root::largest, false, box), root_end(Root::largest, true, box));
+      const Interval l3 = largest ? Interval(std::max(0.0, root_end(Root::smallest, false, box)), root_end(Root::smallest, true, box)) : l;
+      const Interval g12 = l1 - m2, g13 = l1 - l3, g23 = m2 - l3;
+      if (g13.lo > 0.0 && (largest ? g12.lo > 0.0 : g23.lo > 0.0)) {
+        natural = tighter(natural, largest ? g12 * g13 : g13 * g23);
+      }
+    }
+  }
+  if (natural.lo > 0.0) return natural;
   const bool largest = which == Root::largest;
   // The other root's proved end, and the gap to this root's end.
   const double other = largest ? root_end(Root::smallest, true, box) : root_end(Root::largest, false, box);
@@ -284,7 +423,8 @@ inline certified::Interval root_slope(Root which, const CubicBox& box, const cer
 // to second order in the box size.
 // (root_jet: pm = p'(λ), enclosed as root_slope does over a box.)
 template <class S>
-certified::Jet<S> root_jet(const Cubic<certified::Jet<S>>& c, const S& l, const Cubic<S>& v, const S& pm);
+certified::Jet<S> root_jet(const Cubic<certified::Jet<S>>& c, const S& l, const Cubic<S>& v, const S& pm,
+                           const S* gx = nullptr, const S* gy = nullptr);
 template <class S>
 certified::Grad<S> root_jet(const Cubic<certified::Grad<S>>& c, const S& l, const Cubic<S>& v, const S& pm);
 
@@ -297,6 +437,10 @@ struct BoxRoot {
   // derivatives as above (the field's jet over the box reuses them).
   Cubic<certified::Jet<certified::Interval>> jets;
   bool has_jets = false;
+  // With the jets: the roots' own jets over the box (value the root's jet
+  // value, not `largest`; derivatives tightened by root_over_box's rounds).
+  certified::Jet<certified::Interval> jet_largest, jet_smallest;
+  bool has_jet_largest = false, has_jet_smallest = false;
   const certified::Interval& operator[](Root which) const { return which == Root::largest ? largest : smallest; }
 };
 // The discriminant of p, Δ = c₂²c₁² − 4c₁³ − 4c₂³c₀ + 18c₂c₁c₀ − 27c₀²
@@ -385,7 +529,26 @@ BoxRoot root_over_box(const F& cubic_of, const certified::Interval& x, const cer
     // λ and its gradient at m (thin coefficients), and its Hessian over B.
     const Interval lmv = cubic_root(which, vm);
     const G lm = root_jet(m, lmv, vm, root_slope(which, vm, lmv));
-    return value(lm, root_jet(bt, l0, out.coefficients, pm));  // the jet's value is l0
+    J rj = root_jet(bt, l0, out.coefficients, pm);  // the jet's value is l0
+    Interval l = value(lm, rj);
+    // The root's gradient over B in its centred form ∇λ(m) + H_λ(B) d, and
+    // H_λ from it again: H_λ's formula is a sum of terms several times its
+    // size (p_xx, 2 p_μx λ_x and p_μμ λ_x², over p_μ), so the natural λ_x's
+    // width comes back multiplied; a few rounds while they narrow.
+    for (int round = 0; round < 2; ++round) {
+      const Interval gx = tighter(rj.dx, lm.dx + rj.dxx * dx + rj.dxy * dy);
+      const Interval gy = tighter(rj.dy, lm.dy + rj.dxy * dx + rj.dyy * dy);
+      const Interval pml = with_discriminant(root_slope(which, box, l));
+      if (pml.contains_zero()) break;
+      const J next = root_jet(bt, l, out.coefficients, tighter(pml, pm), &gx, &gy);
+      const double before = rj.dxx.width() + rj.dyy.width(), after = next.dxx.width() + next.dyy.width();
+      rj = next;
+      l = value(lm, rj);
+      if (!(after < 0.7 * before)) break;
+    }
+    (which == Root::largest ? out.jet_largest : out.jet_smallest) = rj;
+    (which == Root::largest ? out.has_jet_largest : out.has_jet_smallest) = true;
+    return l;
   };
   out.largest = root(Root::largest);
   out.slope_largest = with_discriminant(root_slope(Root::largest, box, out.largest));
@@ -445,7 +608,8 @@ certified::Grad<S> root_jet(const Cubic<certified::Grad<S>>& c, const S& l, cons
 
 // Implicit differentiation to second order (jets).
 template <class S>
-certified::Jet<S> root_jet(const Cubic<certified::Jet<S>>& c, const S& l, const Cubic<S>& v, const S& pm) {
+certified::Jet<S> root_jet(const Cubic<certified::Jet<S>>& c, const S& l, const Cubic<S>& v, const S& pm, const S* gx,
+                           const S* gy) {
   const S l2 = l * l;
   const S pmm = cubic_curvature(v, l);
   // p_x = -c2_x λ² + c1_x λ - c0_x, p_μx = -2 c2_x λ + c1_x, p_xx = -c2_xx λ² + c1_xx λ - c0_xx.
@@ -456,7 +620,11 @@ certified::Jet<S> root_jet(const Cubic<certified::Jet<S>>& c, const S& l, const 
   const S pxx = (c.c1.dxx * l - c.c2.dxx * l2) - c.c0.dxx;
   const S pxy = (c.c1.dxy * l - c.c2.dxy * l2) - c.c0.dxy;
   const S pyy = (c.c1.dyy * l - c.c2.dyy * l2) - c.c0.dyy;
-  const S lx = -(px / pm), ly = -(py / pm);
+  S lx = -(px / pm), ly = -(py / pm);
+  if constexpr (std::is_same_v<S, certified::Interval>) {
+    if (gx) lx = tighter(lx, *gx);
+    if (gy) ly = tighter(ly, *gy);
+  }
   const S lxx = -((pxx + 2.0 * pmx * lx + pmm * lx * lx) / pm);
   const S lxy = -((pxy + pmx * ly + pmy * lx + pmm * lx * ly) / pm);
   const S lyy = -((pyy + 2.0 * pmy * ly + pmm * ly * ly) / pm);
@@ -589,8 +757,29 @@ std::pair<T, T> cubic_roots_field(const F& cubic_of, const T& x, const T& y, boo
           mine->dy = tighter(mine->dy, gy);
         }
       }
-      out.first = root_jet(c, b.largest, b.coefficients, b.slope_largest);
-      if (smallest) out.second = root_jet(c, b.smallest, b.coefficients, b.slope_smallest);
+      // Where root_over_box's rounds tightened a root's gradient (the same
+      // coefficients: reused), its Hessian is formed from that gradient.
+      const auto jet_of = [&](const S& l, const S& pm, bool known, const certified::Jet<S>& j) {
+        if constexpr (std::is_same_v<T, certified::Jet<S>>) {
+          if (reused && known) {
+            T r = root_jet(c, l, b.coefficients, pm, &j.dx, &j.dy);
+            r.dxx = tighter(r.dxx, j.dxx);
+            r.dxy = tighter(r.dxy, j.dxy);
+            r.dyy = tighter(r.dyy, j.dyy);
+            return r;
+          }
+          return root_jet(c, l, b.coefficients, pm);
+        } else {
+          T r = root_jet(c, l, b.coefficients, pm);
+          if (reused && known) {
+            r.dx = tighter(r.dx, j.dx);
+            r.dy = tighter(r.dy, j.dy);
+          }
+          return r;
+        }
+      };
+      out.first = jet_of(b.largest, b.slope_largest, b.has_jet_largest, b.jet_largest);
+      if (smallest) out.second = jet_of(b.smallest, b.slope_smallest, b.has_jet_smallest, b.jet_smallest);
     }
   } else {
     const Cubic<T> c = cubic_of(x, y);

@@ -136,7 +136,7 @@ TEST(ThreeRprConditioning, RootSlopesEncloseAndSeparate) {
   const double rot[3][3] = {{0.6, -0.8, 0.0}, {0.48, 0.36, -0.8}, {0.64, 0.48, 0.6}};
   const double d[3] = {2.0, 1.5, 1.0};
   int separated = 0;
-  for (const double h : {1e-4, 1e-3, 3e-3, 1e-2}) {
+  for (const double h : {1e-4, 1e-3, 2e-3, 3e-3, 4e-3, 1e-2}) {
     const MatrixFamily family(d, rot, h);
     const auto ci = family.interval_cubic();
     for (const Root which : {Root::largest, Root::smallest}) {
@@ -236,6 +236,112 @@ TEST(ThreeRprConditioning, CorrelatedCoefficientsNarrowTheRoots) {
     }
   }
   EXPECT_GE(narrower, 2);
+}
+
+// The inverted point u = d / |d|² (detail::inverted_point: a leg-angle row of
+// the 3-RPR is linear in it) with derivatives in closed form: at a point its
+// jets are the product rule's (Jet<double> of d / |d|²); over a box they
+// enclose every point's jets; and its Hessians are several times narrower than
+// the product rule's over the same box (which adds terms of size |d|⁻⁴ that
+// cancel).
+TEST(ThreeRprConditioning, InvertedPointJetsEncloseAndAreNarrowerThanTheProductRule) {
+  using certified::Interval;
+  using J = certified::Jet<Interval>;
+  using JD = certified::Jet<double>;
+  const double ex = 0.2, ey = 0.1;
+  const auto generic = [&](const auto& x, const auto& y) {
+    using T = std::decay_t<decltype(x)>;
+    const T dx = x - ex, dy = y - ey;
+    const T r2 = certified::sqr(dx) + certified::sqr(dy);
+    return std::array<T, 2>{dx / r2, dy / r2};
+  };
+  const auto parts = [](const auto& j) { return std::array<decltype(j.v), 6>{j.v, j.dx, j.dy, j.dxx, j.dxy, j.dyy}; };
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> angle(0.0, 6.283185307179586), dist(0.1, 0.4), size(-4.0, -2.5), u(-1.0, 1.0);
+  int narrower = 0, boxes = 0;
+  for (int n = 0; n < 60; ++n) {
+    const double a = angle(rng), r = dist(rng), h = std::pow(10.0, size(rng));
+    const Point c{ex + r * std::cos(a), ey + r * std::sin(a)};
+    // At the centre: the same jets as the product rule's, to rounding.
+    const auto at = criteria::detail::inverted_point<J>(Interval(c.x), Interval(c.y), ex, ey);
+    const auto point = generic(JD::variable_x(c.x), JD::variable_y(c.y));
+    for (int k = 0; k < 2; ++k) {
+      const auto e = parts(at[k]);
+      const auto q = parts(point[k]);
+      for (int i = 0; i < 6; ++i) {
+        EXPECT_NEAR(e[i].mid(), q[i], 1e-12 * (std::abs(q[i]) + 1.0 / (r * r * r))) << n << " " << k << " " << i;
+        EXPECT_LE(e[i].width(), 1e-12 * (std::abs(q[i]) + 1.0 / (r * r * r))) << n << " " << k << " " << i;
+      }
+    }
+    // Over the box: every point's jets inside, and narrower Hessians.
+    const Interval x(c.x - h, c.x + h), y(c.y - h, c.y + h);
+    const auto over = criteria::detail::inverted_point<J>(x, y, ex, ey);
+    const auto natural = generic(J::variable_x(x), J::variable_y(y));
+    for (int m = 0; m < 40; ++m) {
+      const auto p = generic(JD::variable_x(c.x + h * u(rng)), JD::variable_y(c.y + h * u(rng)));
+      for (int k = 0; k < 2; ++k) {
+        const auto e = parts(over[k]);
+        const auto q = parts(p[k]);
+        for (int i = 0; i < 6; ++i) EXPECT_TRUE(e[i].contains(q[i])) << n << " " << k << " " << i << ": " << q[i];
+      }
+    }
+    double closed = 0.0, product = 0.0;
+    for (int k = 0; k < 2; ++k) {
+      closed += over[k].dxx.width() + over[k].dxy.width() + over[k].dyy.width();
+      product += natural[k].dxx.width() + natural[k].dxy.width() + natural[k].dyy.width();
+    }
+    ++boxes;
+    if (closed < 0.5 * product) ++narrower;
+  }
+  EXPECT_EQ(narrower, boxes);
+}
+
+// λ_2 over a box (detail::middle_root) for M(x, y) = diag(2 + x, 1.5 + y, 1 + x / 2) R:
+// it holds every point's λ_2, and with it root_slope takes p'(λ_1) =
+// (λ_1 - λ_2)(λ_1 - λ_3) and p'(λ_3) = (λ_1 - λ_3)(λ_2 - λ_3) from the roots'
+// enclosures: they hold every point's p' and are narrower than the natural form.
+TEST(ThreeRprConditioning, TheMiddleRootEnclosesAndNarrowsTheRootSlopes) {
+  using certified::Interval;
+  using criteria::detail::Root;
+  using G = certified::Grad<Interval>;
+  const auto cubic_of = [](const auto& x, const auto& y) {
+    using T = std::decay_t<decltype(x)>;
+    const double rot[3][3] = {{0.6, -0.8, 0.0}, {0.48, 0.36, -0.8}, {0.64, 0.48, 0.6}};
+    const T d[3] = {x + 2.0, y + 1.5, 0.5 * x + 1.0};
+    T a[3][3];
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) a[i][j] = d[i] * rot[i][j];
+    }
+    return criteria::detail::gram_invariants(a);
+  };
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int narrower = 0, cases = 0;
+  for (const double h : {1e-4, 1e-3, 5e-3, 1e-2}) {
+    const double cx = 0.03, cy = -0.02;
+    const Interval x(cx - h, cx + h), y(cy - h, cy + h);
+    const auto g = cubic_of(G::variable_x(x), G::variable_y(y));
+    const criteria::detail::CubicBox box(cubic_of(x, y), cubic_of(Interval(cx), Interval(cy)), {g.c2.dx, g.c1.dx, g.c0.dx},
+                                         {g.c2.dy, g.c1.dy, g.c0.dy}, Interval(-h, h), Interval(-h, h));
+    const Interval m2 = criteria::detail::middle_root(box);
+    ASSERT_LE(m2.lo, m2.hi) << h;
+    EXPECT_LT(m2.width(), 16.0 * h) << h;  // λ_2's own spread over the box: about 6 h
+    for (const Root which : {Root::largest, Root::smallest}) {
+      const Interval l = criteria::detail::cubic_root(which, box);
+      const Interval natural = criteria::detail::cubic_slope(box.c, l);
+      const Interval slope = criteria::detail::root_slope(which, box, l);
+      ++cases;
+      if (slope.width() < 0.5 * natural.width()) ++narrower;
+      for (int k = 0; k < 300; ++k) {
+        const auto c = cubic_of(cx + h * u(rng), cy + h * u(rng));
+        const double r1 = criteria::detail::cubic_root(Root::largest, c), r3 = criteria::detail::cubic_root(Root::smallest, c);
+        EXPECT_TRUE(m2.contains(c.c2 - r1 - r3)) << h << ": " << c.c2 - r1 - r3;
+        const double r = which == Root::largest ? r1 : r3;
+        EXPECT_TRUE(slope.contains(criteria::detail::cubic_slope(c, r))) << h;
+      }
+    }
+  }
+  EXPECT_EQ(narrower, cases);
 }
 
 TEST(ThreeRprConditioning, SurrogatesAgreeWithTheEvaluationsSvd) {

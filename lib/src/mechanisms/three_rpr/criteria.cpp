@@ -98,6 +98,22 @@ struct ThreeRprTwist {
   // divided by the diagonal B (ρ_j or 1), as ThreeRpr::evaluate's B⁻¹A;
   // x' = (x, y, L φ) divides the third column by L (criteria/singular3.hpp).
   template <class T> detail::Cubic<T> jacobian_cubic(const T& x, const T& y) const {
+    if constexpr (std::is_same_v<T, certified::Grad<Interval>> || std::is_same_v<T, certified::Jet<Interval>>) {
+      // Leg angles over a box: row j is (J d_j, c_j . d_j / L) / ρ_j², linear in
+      // the inverted point u_j = d_j / ρ_j² (dq_j/dφ = (J d_j).(J c_j) / ρ_j²),
+      // whose derivatives have closed forms (detail::inverted_point).
+      if (revolute && detail::plain_coordinates(x, y)) {
+        const Interval inv_length = Interval(1.0) / Interval(length);
+        T a[3][3];
+        for (std::size_t j = 0; j < 3; ++j) {
+          const auto [ux, uy] = detail::inverted_point<T>(x.v, y.v, e[j].x, e[j].y);
+          a[j][0] = -uy;
+          a[j][1] = ux;
+          a[j][2] = (Interval(c[j].x) * inv_length) * ux + (Interval(c[j].y) * inv_length) * uy;
+        }
+        return detail::gram_invariants(a);
+      }
+    }
     T a[3][3], w[3];
     for (std::size_t j = 0; j < 3; ++j) {
       const std::array<T, 4> r = row(j, x, y);
