@@ -273,8 +273,8 @@ inline double root_end_search(Root which, bool upper_end, const CubicBox& box, c
     if (proves(delta)) {
       // Between the last step that failed and this one, two bisections: the
       // steps grow 4×, and the first that holds may be that much wider than
-      // the root's spread.
-      for (int k = 0; k < 2; ++k) {
+      // the root's spread. (The first step is the spread's estimate: none.)
+      for (int k = 0; k < 2 && failed > 0.0; ++k) {
         const double mid = 0.5 * (failed + delta);
         if (proves(mid)) delta = mid;
         else failed = mid;
@@ -345,7 +345,7 @@ inline certified::Interval middle_root(const CubicBox& box) {
     double delta = first, failed = 0.0;
     for (int attempt = 0; attempt < 12 && delta < l1 - u3; ++attempt, failed = delta, delta *= 4.0) {
       if (!proves(delta)) continue;
-      for (int k = 0; k < 2; ++k) {
+      for (int k = 0; k < 2 && failed > 0.0; ++k) {
         const double m = 0.5 * (failed + delta);
         if (proves(m)) delta = m;
         else failed = m;

@@ -98,6 +98,15 @@ struct ThreeRrpChains {
   template <class T> detail::Cubic<T> jacobian_cubic(const T& x, const T& y) const {
     Parts<T> p = parts(x, y);
     for (auto& row : p.a) row[2] = row[2] / length;
+    if (!crank) {
+      // 3-PRP: B_ii = n_i . d_i is constant, so the rows are scaled once and
+      // the invariants need no division (of jets, the costly part).
+      for (std::size_t i = 0; i < 3; ++i) {
+        const double b = std::abs(nd[i]);
+        for (T& entry : p.a[i]) entry = entry / b;
+      }
+      return detail::gram_invariants(p.a);
+    }
     return detail::gram_invariants(p.a, p.weight);
   }
   template <class T> T eval(const T& x, const T& y) const {
