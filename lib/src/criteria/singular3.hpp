@@ -42,12 +42,17 @@ template <class T> struct Cubic {
 };
 
 // The invariants of MᵀM for M with rows m_j = a_j / sqrt(w_j) (w_j > 0: the
-// rows' weights, e.g. ρ_j⁴ for a leg angle), without square roots:
+// rows' weights, e.g. ρ_j⁴ for a leg angle; none: unit weights), without
+// square roots:
 //   c_2 = Σ |a_j|² / w_j, c_1 = Σ_{i<j} |a_i x a_j|² / (w_i w_j), c_0 = det(A)² / (w_0 w_1 w_2).
-template <class T> Cubic<T> gram_invariants(const T (&a)[3][3], const T (&w)[3]) {
+template <class T> Cubic<T> gram_invariants_weighted(const T (&a)[3][3], const T (*w)[3]) {
   using certified::sqr;
-  T c2 = (sqr(a[0][0]) + sqr(a[0][1]) + sqr(a[0][2])) / w[0];
-  for (int j = 1; j < 3; ++j) c2 = c2 + (sqr(a[j][0]) + sqr(a[j][1]) + sqr(a[j][2])) / w[j];
+  const auto row = [&](int j) {
+    const T n = sqr(a[j][0]) + sqr(a[j][1]) + sqr(a[j][2]);
+    return w ? n / (*w)[j] : n;
+  };
+  T c2 = row(0);
+  for (int j = 1; j < 3; ++j) c2 = c2 + row(j);
   T c1 = T(0.0);
   T cof[3];  // a_1 x a_2: the cofactors of row 0
   for (int i = 0; i < 3; ++i) {
@@ -55,7 +60,8 @@ template <class T> Cubic<T> gram_invariants(const T (&a)[3][3], const T (&w)[3])
       const T w0 = a[i][1] * a[j][2] - a[i][2] * a[j][1];
       const T w1 = a[i][2] * a[j][0] - a[i][0] * a[j][2];
       const T w2 = a[i][0] * a[j][1] - a[i][1] * a[j][0];
-      c1 = c1 + (sqr(w0) + sqr(w1) + sqr(w2)) / (w[i] * w[j]);
+      const T n = sqr(w0) + sqr(w1) + sqr(w2);
+      c1 = c1 + (w ? n / ((*w)[i] * (*w)[j]) : n);
       if (i == 1) {
         cof[0] = w0;
         cof[1] = w1;
@@ -63,36 +69,15 @@ template <class T> Cubic<T> gram_invariants(const T (&a)[3][3], const T (&w)[3])
       }
     }
   }
-  const T det = a[0][0] * cof[0] + a[0][1] * cof[1] + a[0][2] * cof[2];
-  return {c2, c1, sqr(det) / ((w[0] * w[1]) * w[2])};
+  const T det2 = sqr(a[0][0] * cof[0] + a[0][1] * cof[1] + a[0][2] * cof[2]);
+  return {c2, c1, w ? det2 / (((*w)[0] * (*w)[1]) * (*w)[2]) : det2};
 }
+template <class T> Cubic<T> gram_invariants(const T (&a)[3][3], const T (&w)[3]) { return gram_invariants_weighted(a, &w); }
+template <class T> Cubic<T> gram_invariants(const T (&a)[3][3]) { return gram_invariants_weighted<T>(a, nullptr); }
 
 inline certified::Interval tighter(const certified::Interval& a, const certified::Interval& b) {
   const certified::Interval both = certified::intersect(a, b);
   return both.lo <= both.hi ? both : a;
-}
-
-// The same with unit weights (rows m_j = a_j).
-template <class T> Cubic<T> gram_invariants(const T (&a)[3][3]) {
-  using certified::sqr;
-  T c2 = sqr(a[0][0]) + sqr(a[0][1]) + sqr(a[0][2]);
-  for (int j = 1; j < 3; ++j) c2 = c2 + (sqr(a[j][0]) + sqr(a[j][1]) + sqr(a[j][2]));
-  T c1 = T(0.0);
-  T cof[3];  // a_1 x a_2: the cofactors of row 0
-  for (int i = 0; i < 3; ++i) {
-    for (int j = i + 1; j < 3; ++j) {
-      const T w0 = a[i][1] * a[j][2] - a[i][2] * a[j][1];
-      const T w1 = a[i][2] * a[j][0] - a[i][0] * a[j][2];
-      const T w2 = a[i][0] * a[j][1] - a[i][1] * a[j][0];
-      c1 = c1 + (sqr(w0) + sqr(w1) + sqr(w2));
-      if (i == 1) {
-        cof[0] = w0;
-        cof[1] = w1;
-        cof[2] = w2;
-      }
-    }
-  }
-  return {c2, c1, sqr(a[0][0] * cof[0] + a[0][1] * cof[1] + a[0][2] * cof[2])};
 }
 
 // The inverted point u = d / |d|² of d = (x - e_x, y - e_y) over a box, as
