@@ -154,6 +154,11 @@ struct CubicBox {
     const auto slope = [&](const Cubic<certified::Interval>& g) { return (-(g.c2 * mu) + g.c1) * mu - g.c0; };
     return slope(gx) * dx + slope(gy) * dy;
   }
+  // Half the width of p(μ) over the box at μ (the coefficients' spread there).
+  double spread(double mu) const {
+    const double s = 0.5 * (c.c2.width() * mu * mu + c.c1.width() * std::abs(mu) + c.c0.width());
+    return has_gradients ? std::min(s, 0.5 * moved(certified::Interval(mu)).width()) : s;
+  }
   certified::Interval value(const certified::Interval& mu) const {
     const certified::Interval natural = cubic_value(c, mu);
     if (!has_gradients) return natural;
@@ -224,14 +229,33 @@ inline RootStart root_start(Root which, const CubicBox& box) {
   const double r = cubic_root(which, mid);
   const double slope = std::abs(cubic_slope(mid, r)), curvature = std::abs(cubic_curvature(mid, r));
   // How far the coefficients' spread moves the root, and a floor.
-  double spread = 0.5 * (c.c2.width() * r * r + c.c1.width() * std::abs(r) + c.c0.width());
-  if (box.has_gradients) spread = std::min(spread, 0.5 * box.moved(certified::Interval(r)).width());
+  const double spread = box.spread(r);
   double delta = slope > 0.0 ? spread / slope : top;
   if (curvature > 0.0) delta = std::min(delta, std::sqrt(2.0 * spread / curvature));
   delta = std::min(delta, std::cbrt(spread));  // a triple root (isotropy): the third derivative is 6
   box.starts[slot] = {r, std::max(std::isfinite(delta) ? delta : top, 1e-12 * std::max(top, 1e-300))};
   box.has_start[slot] = true;
   return box.starts[slot];
+}
+
+// The first step δ = first·4^k (k < attempts, stopping where `beyond(δ)`) at
+// which `proves(δ)` holds, narrowed by two bisections towards the last step
+// that failed: the steps grow 4×, and the first that holds may be that much
+// wider than needed (a first step that holds, the spread's own estimate, is
+// kept). NaN where none holds.
+template <class Beyond, class Proves>
+double proved_step(double first, int attempts, const Beyond& beyond, const Proves& proves) {
+  double delta = first, failed = 0.0;
+  for (int attempt = 0; attempt < attempts && !beyond(delta); ++attempt, failed = delta, delta *= 4.0) {
+    if (!proves(delta)) continue;
+    for (int k = 0; k < 2 && failed > 0.0; ++k) {
+      const double mid = 0.5 * (failed + delta);
+      if (proves(mid)) delta = mid;
+      else failed = mid;
+    }
+    return delta;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 // One end of the enclosure (upper_end: U, else L), or the fallback's end.
@@ -251,23 +275,12 @@ inline double root_end_search(Root which, bool upper_end, const CubicBox& box, c
     return upper_end ? box.value(u).lo > 0.0
                      : box.value(u).hi < 0.0 && cubic_slope(c, u).lo > 0.0 && cubic_curvature(c, u).hi < 0.0;
   };
-  double delta = start.first, failed = 0.0;
-  for (int attempt = 0; attempt < 16; ++attempt, failed = delta, delta *= 4.0) {
+  const auto beyond = [&](double delta) {  // no better than the fallback
     const double at = upper_end ? r + delta : r - delta;
-    if (upper_end ? at >= fallback_end : at <= fallback_end) break;  // no better than the fallback
-    if (proves(delta)) {
-      // Between the last step that failed and this one, two bisections: the
-      // steps grow 4×, and the first that holds may be that much wider than
-      // the root's spread. (The first step is the spread's estimate: none.)
-      for (int k = 0; k < 2 && failed > 0.0; ++k) {
-        const double mid = 0.5 * (failed + delta);
-        if (proves(mid)) delta = mid;
-        else failed = mid;
-      }
-      return upper_end ? r + delta : r - delta;
-    }
-  }
-  return fallback_end;
+    return upper_end ? at >= fallback_end : at <= fallback_end;
+  };
+  const double delta = proved_step(start.first, 16, beyond, proves);
+  return std::isnan(delta) ? fallback_end : (upper_end ? r + delta : r - delta);
 }
 // The same, searched once per box and end (CubicBox keeps it).
 inline double root_end(Root which, bool upper_end, const CubicBox& box) {
@@ -314,12 +327,11 @@ inline certified::Interval middle_root(const CubicBox& box) {
   if (!(u3 < l1) || !c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return box.middle;
   const Cubic<double> mid{c.c2.mid(), c.c1.mid(), c.c0.mid()};
   const double r = std::clamp(mid.c2 - root_start(Root::largest, box).r - root_start(Root::smallest, box).r, u3, l1);
-  double spread = 0.5 * (c.c2.width() * r * r + c.c1.width() * std::abs(r) + c.c0.width());
-  if (box.has_gradients) spread = std::min(spread, 0.5 * box.moved(Interval(r)).width());
+  const double spread = box.spread(r);
   const double slope = std::abs(cubic_slope(mid, r));
   const double first = std::max(slope > 0.0 ? std::min(spread / slope, l1 - u3) : l1 - u3, 1e-12 * std::max(std::abs(r), 1e-300));
-  // One side: the nearest point r ± δ (steps 4×, then two bisections) with
-  // the sign, inside (u3, l1); NaN where none.
+  // One side: the nearest point r ± δ with the sign, inside (u3, l1); NaN
+  // where none.
   const auto side = [&](bool upper) {
     const auto proves = [&](double delta) {
       const double at = upper ? r + delta : r - delta;
@@ -327,17 +339,8 @@ inline certified::Interval middle_root(const CubicBox& box) {
       const Interval v = box.value(Interval(at));
       return upper ? v.hi < 0.0 : v.lo > 0.0;
     };
-    double delta = first, failed = 0.0;
-    for (int attempt = 0; attempt < 12 && delta < l1 - u3; ++attempt, failed = delta, delta *= 4.0) {
-      if (!proves(delta)) continue;
-      for (int k = 0; k < 2 && failed > 0.0; ++k) {
-        const double m = 0.5 * (failed + delta);
-        if (proves(m)) delta = m;
-        else failed = m;
-      }
-      return upper ? r + delta : r - delta;
-    }
-    return std::numeric_limits<double>::quiet_NaN();
+    const double delta = proved_step(first, 12, [&](double d) { return !(d < l1 - u3); }, proves);
+    return upper ? r + delta : r - delta;
   };
   const double a = side(false), b = side(true);
   if (a < b) box.middle = Interval(a, b);
