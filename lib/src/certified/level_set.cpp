@@ -153,8 +153,9 @@ struct Curvature {
 class Tracer {
  public:
   Tracer(const ScalarField& f, double level, const Box& cell, bool swapped, int sgn, double lipschitz, Interval slope,
-         double gv_min, double extent, double tau, const AreaWeight& weight)
-      : f_(f), level_(level), swapped_(swapped), sgn_(sgn), L_(lipschitz), slope_(slope), gv_min_(gv_min), tau_(tau) {
+         double gv_min, double extent, double tau, const AreaWeight& weight, bool envelopes_only)
+      : f_(f), level_(level), swapped_(swapped), sgn_(sgn), L_(lipschitz), slope_(slope), gv_min_(gv_min), tau_(tau),
+        envelopes_only_(envelopes_only) {
     unit_ = weight.unit();
     c0_ = weight.c0;
     cu_ = swapped ? weight.cy : weight.cx;
@@ -234,6 +235,10 @@ class Tracer {
   Interval slope_;  // g' over B' (signed; |g'| <= L)
   double gv_min_;   // G_v >= gv_min_ > 0 over B'
   double tau_;
+  // The cell's bounds are its envelopes' (a cell across W's boundary is
+  // clipped to W with them, summarize): each piece is held to τΔ on them,
+  // the quadrature's tighter bound would not count.
+  bool envelopes_only_;
   double u0_ = 0, u1_ = 0, v0_ = 0, v1_ = 0, w0_ = 0, w1_ = 0, scale_ = 1;
   bool unit_ = true;                 // ρ = 1
   double c0_ = 1, cu_ = 0, cv_ = 0;  // ρ(u, v) = c0 + cu u + cv v
@@ -428,7 +433,7 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
     // the curve may leave the cell within the piece at fourth order too.
     const bool in_cell = box_lo >= v0_ && box_hi <= v1_;
     const auto quadrature = [&](const Interval& g1, const Interval& g2, bool force) {
-      if (!g2.finite() || !g1.finite()) return false;
+      if (envelopes_only_ || !g2.finite() || !g1.finite()) return false;
       // ρ >= 0 wherever D is evaluated: between the cell and the envelopes
       // (which reach beyond S by the chord bound).
       const double e_lo = std::max(0.0, g2.hi) * q * (1.0 + 1e-12), e_hi = std::max(0.0, -g2.lo) * q * (1.0 + 1e-12);
@@ -616,7 +621,7 @@ Grad<Interval> centred_gradient(const ScalarField& f, const Box& b, Grad<Interva
 
 // `known`: F's gradient over the cell, if the cell's test took it already.
 CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double tau, const AreaWeight& weight,
-                    const std::optional<Grad<Interval>>& known = std::nullopt) {
+                    bool envelopes_only, const std::optional<Grad<Interval>>& known = std::nullopt) {
   CellTrace t;
   Grad<Interval> j = known ? *known : f.grad(cell);
   // The centred form where a component's sign is unknown: it decides which
@@ -678,7 +683,7 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
     extent = 1.5 * le * du + 1e-12 * du;
   }
   if (!ok) return t;
-  Tracer tracer(f, level, cell, swapped, sgn, lipschitz, signed_slope, gv_min, extent, tau, weight);
+  Tracer tracer(f, level, cell, swapped, sgn, lipschitz, signed_slope, gv_min, extent, tau, weight, envelopes_only);
   tracer.run(t);
   return t;
 }
@@ -939,7 +944,7 @@ void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, co
     // exactly (summarize), instead of refining the points where the level
     // curve meets W's boundary to the depth limit.
     if (k.field->domain(cell) == CellState::inside) {
-      CellTrace t = try_trace(*k.field, k.level, cell, tau, weight, grad);
+      CellTrace t = try_trace(*k.field, k.level, cell, tau, weight, in_w != CellState::inside, grad);
       t.constraint = static_cast<std::size_t>(active);
       if (t.ok) {
         (in_w == CellState::inside ? r.traced : r.traced_across).emplace_back(cell, std::move(t));
@@ -996,6 +1001,18 @@ struct Pass {
   double small_cell = 0.0;  // see add_inside
   bool stopped = false;   // the deadline stopped it
 };
+
+// The options with the cover's depth chosen where it is 0: a level coarser
+// (4) for relative targets of 1e-7 and wider and for absolute ones, where the
+// traced cells of that size are cheaper than twice as many of half the size,
+// else 5; the refinement then goes a level deeper below it, so undecided
+// cells reach the same size as below a cover of 5.
+LevelSetOptions resolved(LevelSetOptions o) {
+  if (o.cover_depth > 0) return o;
+  o.cover_depth = o.relative_tolerance >= 1e-7 || o.absolute_tolerance > 0.0 ? 4 : 5;
+  o.refine_depth = std::min(40, o.refine_depth + 5 - o.cover_depth);
+  return o;
+}
 
 Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const WithinTest& within_test,
                 const LevelSetOptions& options, double tau_override) {
@@ -1243,10 +1260,12 @@ void add_regions(const Pass& pass, const Region& within, const LevelSetOptions& 
 }  // namespace
 
 LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Region& within,
-                            const WithinTest& within_test, const LevelSetOptions& options) {
-  if (!(options.relative_tolerance > 0.0)) throw std::invalid_argument("sublevel_set: relative_tolerance must be positive");
-  if (!(options.absolute_tolerance >= 0.0)) throw std::invalid_argument("sublevel_set: absolute_tolerance must be >= 0");
-  if (options.refine_depth < 0 || options.refine_depth > 40) throw std::invalid_argument("sublevel_set: refine_depth in [0, 40]");
+                            const WithinTest& within_test, const LevelSetOptions& given) {
+  if (!(given.relative_tolerance > 0.0)) throw std::invalid_argument("sublevel_set: relative_tolerance must be positive");
+  if (!(given.absolute_tolerance >= 0.0)) throw std::invalid_argument("sublevel_set: absolute_tolerance must be >= 0");
+  if (given.refine_depth < 0 || given.refine_depth > 40) throw std::invalid_argument("sublevel_set: refine_depth in [0, 40]");
+  if (given.cover_depth < 0 || given.cover_depth > 24) throw std::invalid_argument("sublevel_set: cover_depth in [0, 24]");
+  const LevelSetOptions options = resolved(given);
   if (constraints.empty()) throw std::invalid_argument("sublevel_set: no field");
   if (within.empty()) {
     LevelSetResult r;

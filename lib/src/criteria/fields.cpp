@@ -274,7 +274,7 @@ certified::LevelSetResult charted_sublevel_set(const std::vector<certified::Cons
     co.weight = chart.weight;
     // The charts' parts are thin (a band, a small disk): a coarser cover
     // (16 × 2³ cells over the window) still leaves the curve graphs in its cells.
-    co.cover_depth = std::min(co.cover_depth, 3);
+    co.cover_depth = co.cover_depth > 0 ? std::min(co.cover_depth, 3) : 3;
     // Cells closest to square in the chart's units: its window is far wider
     // than high (a band: ~11 times, a base disk: 2π), and a level curve
     // crossing it then crossed 128 rows of flat cells (DexTAR (+1, +1),

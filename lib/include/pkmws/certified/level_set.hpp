@@ -88,7 +88,9 @@ struct LevelSetOptions {
   int base = 16;
   /// Rows of the base grid where they differ from `base` (0: `base`; CellOptions::base_rows).
   int base_rows = 0;
-  int cover_depth = 5;
+  /// 0: chosen from the target (4 for relative targets of 1e-7 and wider,
+  /// where the traced cells of a level coarser pay; 5 for tighter ones).
+  int cover_depth = 0;
   /// Further splits of a cell that cannot be traced (depth below the cover's leaves).
   int refine_depth = 8;
   /// 0: every hardware thread, 1: serial. Results do not depend on it.
