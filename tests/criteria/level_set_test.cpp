@@ -179,6 +179,36 @@ TEST(LevelSets, WidthShrinksWithTheToleranceAndBoundsNest) {
   }
 }
 
+// The cover's depth chosen from the target (0) or given: every depth gives
+// bounds that hold the closed form and meet the target; depths outside
+// [0, 24] and refinements outside [0, 40] are refused.
+TEST(LevelSets, EveryCoverDepthMeetsTheTargetAndBadDepthsAreRefused) {
+  const certified::TemplateField<Cassini> f(Cassini{1.0});
+  const Box w = box(-2.0, -1.5, 2.0, 1.5);
+  const geometry::Region window = geometry::rectangle(w);
+  const double exact = cassini_area(1.0, 1.2), level = std::pow(1.2, 4);
+  for (double tol : {1e-6, 1e-9}) {
+    for (int depth : {0, 3, 4, 5, 6}) {
+      certified::LevelSetOptions o;
+      o.relative_tolerance = tol;
+      o.cover_depth = depth;
+      const auto r = certified::sublevel_set(f, level, window, always_inside(w), o);
+      EXPECT_LE(r.region.area_lower, exact) << tol << " " << depth;
+      EXPECT_GE(r.region.area_upper, exact) << tol << " " << depth;
+      EXPECT_LE(r.region.width(), tol * exact) << tol << " " << depth;
+      EXPECT_GT(r.traced_cells, 0u);
+    }
+  }
+  for (int depth : {-1, 25}) {
+    certified::LevelSetOptions o;
+    o.cover_depth = depth;
+    EXPECT_THROW(certified::sublevel_set(f, level, window, always_inside(w), o), std::invalid_argument) << depth;
+  }
+  certified::LevelSetOptions o;
+  o.refine_depth = 41;
+  EXPECT_THROW(certified::sublevel_set(f, level, window, always_inside(w), o), std::invalid_argument);
+}
+
 // An absolute target (a chart's share of a whole's width): the width meets
 // it, not the far tighter relative one, and the bounds hold the closed form.
 // A relative target alone of the same size gives the same work; the
