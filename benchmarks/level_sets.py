@@ -178,7 +178,7 @@ def main():
         "cases (−1, +1) and (+1, −1), which do the same work, have differed by up to 1.36×. All rows come from "
         "one run (2026-12-04, session 23). The change since the table before (session 22), measured side by "
         "side against the build before it in paired `pkmws area` runs on one core (best of 3, alternated): "
-        "1e-6 1.07–1.6× on 29 of the 30 cases (DexTAR 1.10–1.25×, PAMINSA reactions 1.00–1.14×, 3-PRP, MOMA and "
+        "1e-6 1.00–1.61× on 29 of the 30 cases (DexTAR 1.10–1.25×, PAMINSA reactions 1.00–1.14×, 3-PRP, MOMA and "
         "biglide 1.36–1.61×), κ <= 4 0.98×; 1e-9 1.15–1.22× (κ <= 4, DexTAR (−1, −1) α <= 20°, PAMINSA R <= 110 N "
         "φ = 25°). Widths at 1e-6 are wider, up to 5.1e-7 (were up to 4.5e-7), as the pieces now use their "
         "allowance; every interval meets the one before. The two-thread column is new in session 23: the median "
