@@ -69,8 +69,9 @@ def main():
             continue
         t1 = best(one)
         w1 = one["rel_width"]
-        # The speed-up measured side by side (alternated runs) where the
-        # benchmark has it; else the ratio of the two separate cases.
+        # The speed-up measured side by side (the median of back-to-back
+        # pairs) where the benchmark has it; else (older benchmark output) the
+        # ratio of the two separate cases.
         speedup = (two.get("paired_speedup") or t1 / best(two)) if two else None
         speed = f"{speedup:.2f}×" if speedup else "–"
         if speedup and t1 >= SLOW:

@@ -409,7 +409,9 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
     // A piece's allowance is τΔ plus what the pieces before it in this cell
     // left unused (slack_): the cell's width stays within τ times the length
     // traced, and a piece just over its own share is not split.
-    auto accept = [&](const Interval& g2, bool force, bool envelope_only = false) {
+    // `slack_taken`: the quadrature accepted the piece and took its share of
+    // the allowance already; only the envelopes are added.
+    auto accept = [&](const Interval& g2, bool force, bool slack_taken = false) {
       if (!g2.finite()) return false;
       const double e_lo = std::max(0.0, g2.hi) * q * (1.0 + 1e-12);
       const double e_hi = std::max(0.0, -g2.lo) * q * (1.0 + 1e-12);
@@ -417,7 +419,7 @@ void Tracer::integrate(double a, double b, const Sample& sa, const Sample& sb, i
       excess = std::min(excess, width / (tau_ * delta));
       const double allowed = tau_ * delta + slack_;
       if (!(width <= allowed || force)) return false;
-      if (!envelope_only) slack_ = std::max(0.0, allowed - width);
+      if (!slack_taken) slack_ = std::max(0.0, allowed - width);
       add_clamped(env_lo_, a, sa.lo - e_lo, b, sb.lo - e_lo);
       add_clamped(env_hi_, a, sa.hi + e_hi, b, sb.hi + e_hi);
       return true;
@@ -1009,8 +1011,9 @@ struct Pass {
 // cells reach the same size as below a cover of 5.
 LevelSetOptions resolved(LevelSetOptions o) {
   if (o.cover_depth > 0) return o;
-  o.cover_depth = o.relative_tolerance >= 1e-7 || o.absolute_tolerance > 0.0 ? 4 : 5;
-  o.refine_depth = std::min(40, o.refine_depth + 5 - o.cover_depth);
+  constexpr int fine = 5, coarse = 4;
+  o.cover_depth = o.relative_tolerance >= 1e-7 || o.absolute_tolerance > 0.0 ? coarse : fine;
+  o.refine_depth = std::min(40, o.refine_depth + fine - o.cover_depth);
   return o;
 }
 
