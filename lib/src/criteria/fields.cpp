@@ -201,16 +201,31 @@ void limit_singularity_distance(const mechanisms::Design& file, const geometry::
     return;
   }
   const bool exact = r.exact;
-  const geometry::Region inner = r.inner.subtract(t.inner_tube);
-  const geometry::Region outer = r.outer.subtract(t.outer_tube);
+  // Each side's Boolean operations (and areas) are independent of the other's: two tasks.
+  geometry::Region inner, outer;
+  double inner_tube_part = 0.0, outer_tube_part = 0.0;  // area(W'.outer ∩ T_in), area(W'.inner ∩ T_out)
+  const geometry::Region& around = r.outer.empty() && r.area_upper > 0.0 ? within : r.outer;  // encloses W'
+  pkmws::detail::ParallelPolicy policy;
+  policy.threads = options.threads;
+  policy.serial_threshold = 0;
+  pkmws::detail::for_each_block(policy, 2, 2, [&](std::size_t k) {
+    if (k == 0) {
+      inner = r.inner.subtract(t.inner_tube);
+      (void)inner.area();  // the boundary, extracted once (cached)
+      if (!exact) inner_tube_part = around.intersect(t.inner_tube).area();
+    } else {
+      outer = r.outer.subtract(t.outer_tube);
+      (void)outer.area();
+      if (!exact) outer_tube_part = r.inner.intersect(t.outer_tube).area();
+    }
+  });
   if (exact) {
     r.area_lower = inner.area();
     r.area_upper = outer.area();
   } else {
     // Regions not built (a deadline): W itself encloses W'.
-    const geometry::Region& around = r.outer.empty() && r.area_upper > 0.0 ? within : r.outer;
-    r.area_lower = std::max(0.0, r.area_lower - around.intersect(t.inner_tube).area());
-    r.area_upper = std::max(r.area_lower, r.area_upper - r.inner.intersect(t.outer_tube).area());
+    r.area_lower = std::max(0.0, r.area_lower - inner_tube_part);
+    r.area_upper = std::max(r.area_lower, r.area_upper - outer_tube_part);
     // The regions' own areas bound it too, and area(inner) <= area_lower <=
     // area_upper <= area(outer) must hold: the better of both (with regions
     // that follow W's level curves, the subtraction above can be the looser).

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "detail/parallel.hpp"
 #include "pkmws/certified/zero_set.hpp"
 #include "pkmws/core/error.hpp"
 #include "pkmws/geometry/primitives.hpp"
@@ -273,7 +274,9 @@ SingularTubes singular_tubes(const mechanisms::Design& file, const Region& withi
     g.box.expand(b);
     if (on_curve) g.on_curve.push_back(*on_curve);
   };
-  for (const auto& piece : t.curves) {
+  std::vector<std::size_t> long_pieces;
+  for (std::size_t k = 0; k < t.curves.size(); ++k) {
+    const auto& piece = t.curves[k];
     Box bb;
     for (const Point& p : piece) bb.expand(p);
     if (std::max(bb.width(), bb.height()) < c) {
@@ -282,8 +285,27 @@ SingularTubes singular_tubes(const mechanisms::Design& file, const Region& withi
       group(bb, &piece.front());
       continue;
     }
-    polyline_tube_parts(piece, delta + t.error, true, in_parts);
-    if (delta - t.error > 0.0) polyline_tube_parts(piece, delta - t.error, false, out_parts);
+    long_pieces.push_back(k);
+  }
+  // The long pieces' tubes (exact polygons and disks) are built as parallel
+  // tasks over fixed blocks of pieces and kept in piece order, so the parts
+  // do not depend on the number of threads.
+  pkmws::detail::ParallelPolicy policy;
+  policy.threads = options.threads;
+  policy.serial_threshold = 32;  // pieces; each tube takes tens of microseconds
+  constexpr std::size_t per_block = 8;
+  const std::size_t blocks = pkmws::detail::block_count(long_pieces.size(), per_block);
+  std::vector<std::vector<Region>> block_in(blocks), block_out(blocks);
+  pkmws::detail::for_each_block(policy, blocks, long_pieces.size(), [&](std::size_t b) {
+    for (std::size_t i = b * per_block; i < std::min(long_pieces.size(), (b + 1) * per_block); ++i) {
+      const auto& piece = t.curves[long_pieces[i]];
+      polyline_tube_parts(piece, delta + t.error, true, block_in[b]);
+      if (delta - t.error > 0.0) polyline_tube_parts(piece, delta - t.error, false, block_out[b]);
+    }
+  });
+  for (std::size_t b = 0; b < blocks; ++b) {
+    in_parts.insert(in_parts.end(), block_in[b].begin(), block_in[b].end());
+    out_parts.insert(out_parts.end(), block_out[b].begin(), block_out[b].end());
   }
   for (const Box& b : t.undecided) group(b, nullptr);
   for (const auto& [key, g] : groups) {
@@ -303,8 +325,12 @@ SingularTubes singular_tubes(const mechanisms::Design& file, const Region& withi
       if (ro > 0.0) out_parts.push_back(geometry::disk(best, ro));
     }
   }
-  t.inner_tube = Region::unite_all(in_parts);
-  t.outer_tube = Region::unite_all(out_parts);
+  // The two unions are independent: two tasks.
+  policy.serial_threshold = 64;  // parts
+  pkmws::detail::for_each_block(policy, 2, in_parts.size() + out_parts.size(), [&](std::size_t k) {
+    if (k == 0) t.inner_tube = Region::unite_all(in_parts);
+    else t.outer_tube = Region::unite_all(out_parts);
+  });
   return t;
 }
 
