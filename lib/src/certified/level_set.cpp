@@ -1210,6 +1210,35 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
       result.curve_constraints.push_back(t.constraint);
     }
   };
+  // The traced cells' envelope polygons (most of this summary's work outside
+  // the clipping), built per leaf as parallel tasks over fixed blocks of
+  // leaves and taken in leaf order below.
+  struct LeafPolygons {
+    std::vector<std::vector<Point>> inner, across_inner, across_outer;
+  };
+  std::vector<LeafPolygons> polygons(per_leaf.size());
+  {
+    std::size_t traced = 0;
+    for (const LeafResult& r : per_leaf) traced += r.traced.size() + r.traced_across.size();
+    detail::ParallelPolicy policy;
+    policy.threads = pass.co.threads;
+    policy.serial_threshold = 256;  // traced cells
+    constexpr std::size_t leaves_per_block = 16;
+    detail::for_each_block(policy, detail::block_count(per_leaf.size(), leaves_per_block), traced, [&](std::size_t b) {
+      for (std::size_t k = b * leaves_per_block; k < std::min(per_leaf.size(), (b + 1) * leaves_per_block); ++k) {
+        for (const auto& [cell, t] : per_leaf[k].traced) {
+          envelope_polygons(t, cell, t.sgn < 0, polygons[k].inner);  // below env_lo, or above env_hi
+        }
+        for (const auto& [cell, t] : per_leaf[k].traced_across) {  // bounded below by clipping to W exactly
+          envelope_polygons(t, cell, t.sgn < 0, polygons[k].across_inner);
+          envelope_polygons(t, cell, t.sgn > 0, polygons[k].across_outer);
+        }
+      }
+    });
+  }
+  const auto take_polygons = [](std::vector<std::vector<Point>>& from, std::vector<std::vector<Point>>& to) {
+    to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));
+  };
   for (std::size_t k = 0; k < per_leaf.size(); ++k) {
     const LeafResult& r = per_leaf[k];
     result.cell_tests += r.tests;
@@ -1227,14 +1256,12 @@ LevelSetResult summarize(const Pass& pass, const Region& within, const WithinTes
     for (const auto& [cell, t] : r.traced) {
       traced_lower += t.lower;
       traced_upper += t.upper;
-      envelope_polygons(t, cell, t.sgn < 0, result.inner_polygons);  // below env_lo, or above env_hi
       take_trace(t);
     }
-    for (const auto& [cell, t] : r.traced_across) {  // bounded below by clipping to W exactly
-      envelope_polygons(t, cell, t.sgn < 0, across_inner);
-      envelope_polygons(t, cell, t.sgn > 0, across_outer);
-      take_trace(t);
-    }
+    for (const auto& [cell, t] : r.traced_across) take_trace(t);
+    take_polygons(polygons[k].inner, result.inner_polygons);
+    take_polygons(polygons[k].across_inner, across_inner);
+    take_polygons(polygons[k].across_outer, across_outer);
   }
   // Cells across W's boundary: exact region operations. A traced cell's part
   // of S lies between W ∩ (the cell's side of its inner envelope) and
