@@ -1,5 +1,7 @@
 #include "pkmws/geometry/inscribed.hpp"
 
+#include "geometry/boundary_pieces.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,15 +14,7 @@ namespace pkmws::geometry {
 
 namespace {
 
-// A boundary curve, with what the many point queries of a search need of an
-// arc computed once: its end directions from the centre, ordered
-// counter-clockwise (a cw arc from S to T is the ccw arc from T to S), and
-// whether it spans more than a half turn. Unused for segments.
-struct Piece {
-  const Curve* curve;
-  Point from, to;  // ccw: the arc covers the directions from `from` to `to`
-  bool major = false;
-};
+using Piece = detail::BoundaryPiece;
 
 Piece piece(const Curve& c) {
   if (c.kind != Curve::Kind::arc) return Piece{&c, {}, {}, false};
@@ -82,14 +76,7 @@ double distance(const Piece& k, Point p) {
   return std::min(length(p - c.source), length(p - c.target));
 }
 
-std::vector<Piece> pieces(const Component& component) {
-  std::vector<Piece> out;
-  for (const Curve& c : component.outer.curves) out.push_back(piece(c));
-  for (const Loop& h : component.holes) {
-    for (const Curve& c : h.curves) out.push_back(piece(c));
-  }
-  return out;
-}
+std::vector<Piece> pieces(const Component& component) { return detail::boundary_pieces(component); }
 
 double distance_to_boundary(const std::vector<Piece>& boundary, Point p) {
   double d = std::numeric_limits<double>::infinity();
@@ -112,13 +99,65 @@ double distance_to_boundary(const std::vector<Piece>& boundary, Point p) {
   return d;
 }
 
-bool inside(const std::vector<Piece>& boundary, Point p) {
+}  // namespace
+
+std::vector<detail::BoundaryPiece> detail::boundary_pieces(const Component& component) {
+  std::vector<Piece> out;
+  for (const Curve& c : component.outer.curves) out.push_back(piece(c));
+  for (const Loop& h : component.holes) {
+    for (const Curve& c : h.curves) out.push_back(piece(c));
+  }
+  return out;
+}
+
+bool detail::inside(const std::vector<detail::BoundaryPiece>& boundary, Point p) {
   int n = 0;
   for (const Piece& k : boundary) n += crossings(k, p);
   return n % 2 == 1;
 }
 
-}  // namespace
+detail::BoundaryIndex::BoundaryIndex(const Component& component) : pieces_(boundary_pieces(component)) {
+  if (pieces_.empty()) return;
+  // Each piece's y-extent: a segment's ends; an arc's ends and the circle's
+  // top and bottom where the arc's span (as `crossings` tests it) holds
+  // them, widened for the span test's tilt and rounding.
+  double lo_all = std::numeric_limits<double>::infinity(), hi_all = -lo_all;
+  std::vector<std::pair<double, double>> extent;
+  extent.reserve(pieces_.size());
+  for (const Piece& k : pieces_) {
+    const Curve& c = *k.curve;
+    double lo = std::min(c.source.y, c.target.y), hi = std::max(c.source.y, c.target.y);
+    if (c.kind == Curve::Kind::arc) {
+      if (within_span(k, {0.0, 1.0})) hi = c.center.y + c.radius;
+      if (within_span(k, {0.0, -1.0})) lo = c.center.y - c.radius;
+      const double margin = 1e-6 * (c.radius + std::abs(c.center.y));
+      lo -= margin;
+      hi += margin;
+    }
+    extent.emplace_back(lo, hi);
+    lo_all = std::min(lo_all, lo);
+    hi_all = std::max(hi_all, hi);
+  }
+  const auto n = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(pieces_.size())))) + 1;
+  y0_ = lo_all;
+  bin_height_ = hi_all > lo_all ? (hi_all - lo_all) / static_cast<double>(n) : 1.0;
+  bins_.resize(n);
+  const auto bin_of = [&](double y) {
+    return static_cast<std::size_t>(std::clamp(std::floor((y - y0_) / bin_height_), 0.0, static_cast<double>(n - 1)));
+  };
+  for (std::size_t i = 0; i < pieces_.size(); ++i) {
+    for (std::size_t b = bin_of(extent[i].first); b <= bin_of(extent[i].second); ++b) bins_[b].push_back(i);
+  }
+}
+
+bool detail::BoundaryIndex::inside(Point p) const {
+  if (bins_.empty()) return false;
+  const double f = std::floor((p.y - y0_) / bin_height_);
+  if (!(f >= 0.0) || f >= static_cast<double>(bins_.size())) return false;  // above or below every piece: no crossing
+  int n = 0;
+  for (const std::size_t i : bins_[static_cast<std::size_t>(f)]) n += crossings(pieces_[i], p);
+  return n % 2 == 1;
+}
 
 double distance(const Curve& c, Point p) { return distance(piece(c), p); }
 
@@ -136,9 +175,10 @@ InscribedCircle largest_inscribed_circle(const Component& component, double prec
     double d;      // signed distance at the centre (negative outside)
     double bound;  // no point of the cell is farther than this from the boundary
   };
-  const std::vector<Piece> boundary = pieces(component);
+  const detail::BoundaryIndex index(component);
+  const std::vector<Piece>& boundary = index.pieces();
   auto make = [&](Point c, double h) {
-    const double d = (inside(boundary, c) ? 1.0 : -1.0) * distance_to_boundary(boundary, c);
+    const double d = (index.inside(c) ? 1.0 : -1.0) * distance_to_boundary(boundary, c);
     return Cell{c, h, d, d + h * std::numbers::sqrt2};
   };
   auto worse = [](const Cell& a, const Cell& x) { return a.bound < x.bound; };
