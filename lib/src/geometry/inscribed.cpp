@@ -117,7 +117,7 @@ bool detail::inside(const std::vector<detail::BoundaryPiece>& boundary, Point p)
 }
 
 detail::BoundaryIndex::BoundaryIndex(const Component& component) : pieces_(boundary_pieces(component)) {
-  if (pieces_.empty()) return;
+  if (pieces_.size() < 32) return;  // no bins: `inside` counts over all pieces
   // Each piece's y-extent: a segment's ends; an arc's ends and the circle's
   // top and bottom where the arc's span (as `crossings` tests it) holds
   // them, widened for the span test's tilt and rounding.
@@ -138,6 +138,7 @@ detail::BoundaryIndex::BoundaryIndex(const Component& component) : pieces_(bound
     lo_all = std::min(lo_all, lo);
     hi_all = std::max(hi_all, hi);
   }
+  // About √n bins.
   const auto n = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(pieces_.size())))) + 1;
   y0_ = lo_all;
   bin_height_ = hi_all > lo_all ? (hi_all - lo_all) / static_cast<double>(n) : 1.0;
@@ -151,7 +152,7 @@ detail::BoundaryIndex::BoundaryIndex(const Component& component) : pieces_(bound
 }
 
 bool detail::BoundaryIndex::inside(Point p) const {
-  if (bins_.empty()) return false;
+  if (bins_.size() <= 1) return detail::inside(pieces_, p);  // a few dozen pieces: all of them
   const double f = std::floor((p.y - y0_) / bin_height_);
   if (!(f >= 0.0) || f >= static_cast<double>(bins_.size())) return false;  // above or below every piece: no crossing
   int n = 0;
