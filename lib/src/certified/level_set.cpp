@@ -1124,12 +1124,7 @@ class ClipToW {
       if (a) sums_[group] = sums_[group] + *a;
       else left.push_back(p);
     }
-    for (std::size_t b = 0; b < left.size(); b += per_block_) {
-      Job job{group, {}, {}};
-      job.pieces.assign(left.begin() + static_cast<std::ptrdiff_t>(b),
-                        left.begin() + static_cast<std::ptrdiff_t>(std::min(left.size(), b + per_block_)));
-      jobs_.push_back(std::move(job));
-    }
+    add_jobs(group, left, &Job::pieces);
     return group;
   }
 
@@ -1143,12 +1138,7 @@ class ClipToW {
     }
     const std::size_t group = sums_.size();
     sums_.emplace_back(0.0);
-    for (std::size_t b = 0; b < boxes.size(); b += per_block_) {
-      Job job{group, {}, {}};
-      job.boxes.assign(boxes.begin() + static_cast<std::ptrdiff_t>(b),
-                       boxes.begin() + static_cast<std::ptrdiff_t>(std::min(boxes.size(), b + per_block_)));
-      jobs_.push_back(std::move(job));
-    }
+    add_jobs(group, boxes, &Job::boxes);
     return group;
   }
 
@@ -1174,6 +1164,15 @@ class ClipToW {
     std::vector<std::vector<Point>> pieces;
     std::vector<Box> boxes;
   };
+  // The group's items as jobs of per_block_ items (the last one fewer), in order.
+  template <class T> void add_jobs(std::size_t group, const std::vector<T>& items, std::vector<T> Job::*field) {
+    for (std::size_t b = 0; b < items.size(); b += per_block_) {
+      Job job{group, {}, {}};
+      (job.*field).assign(items.begin() + static_cast<std::ptrdiff_t>(b),
+                          items.begin() + static_cast<std::ptrdiff_t>(std::min(items.size(), b + per_block_)));
+      jobs_.push_back(std::move(job));
+    }
+  }
   const Region& within_;
   const std::vector<SignedDisk>& disks_;
   std::size_t per_block_;
