@@ -36,6 +36,9 @@ double target_width(const LevelSetOptions& options, double area) {
   return std::max(options.relative_tolerance * area, options.absolute_tolerance);
 }
 
+// A box as a counter-clockwise polygon.
+std::vector<Point> box_polygon(const Box& b) { return {b.min, {b.max.x, b.min.y}, b.max, {b.min.x, b.max.y}}; }
+
 // True if the box holds a point of S = ⋂_k { F_k <= level_k } and a point
 // outside it among its centre and corners (F at points, in double): then no
 // enclosure can decide it, and the cover splits it without one. Only a
@@ -1133,7 +1136,7 @@ class ClipToW {
     if (!disks_.empty()) {
       std::vector<std::vector<Point>> pieces;
       pieces.reserve(boxes.size());
-      for (const Box& b : boxes) pieces.push_back({b.min, {b.max.x, b.min.y}, b.max, {b.min.x, b.max.y}});
+      for (const Box& b : boxes) pieces.push_back(box_polygon(b));
       return add(pieces);
     }
     const std::size_t group = sums_.size();
@@ -1316,15 +1319,12 @@ void add_regions(const Pass& pass, const Region& within, const LevelSetOptions& 
   const bool want_inner = options.regions != LevelSetOptions::Regions::outer;
   const bool want_outer = options.regions != LevelSetOptions::Regions::inner;
   std::vector<std::vector<Point>> in_parts, out_parts;
-  const auto corners = [](const Box& b) {
-    return std::vector<Point>{b.min, {b.max.x, b.min.y}, b.max, {b.min.x, b.max.y}};
-  };
   for (const Box& b : result.inside_boxes) {
-    if (want_inner) in_parts.push_back(corners(b));
-    if (want_outer) out_parts.push_back(corners(b));
+    if (want_inner) in_parts.push_back(box_polygon(b));
+    if (want_outer) out_parts.push_back(box_polygon(b));
   }
   if (want_outer) {
-    for (const Box& b : result.undecided_boxes) out_parts.push_back(corners(b));
+    for (const Box& b : result.undecided_boxes) out_parts.push_back(box_polygon(b));
   }
   const double tol = 0.25 * pass.tau;
   for (const LeafResult& r : pass.per_leaf) {

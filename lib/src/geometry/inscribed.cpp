@@ -76,8 +76,6 @@ double distance(const Piece& k, Point p) {
   return std::min(length(p - c.source), length(p - c.target));
 }
 
-std::vector<Piece> pieces(const Component& component) { return detail::boundary_pieces(component); }
-
 double distance_to_boundary(const std::vector<Piece>& boundary, Point p) {
   double d = std::numeric_limits<double>::infinity();
   for (const Piece& k : boundary) {
@@ -162,9 +160,11 @@ bool detail::BoundaryIndex::inside(Point p) const {
 
 double distance(const Curve& c, Point p) { return distance(piece(c), p); }
 
-double distance_to_boundary(const Component& component, Point p) { return distance_to_boundary(pieces(component), p); }
+double distance_to_boundary(const Component& component, Point p) {
+  return distance_to_boundary(detail::boundary_pieces(component), p);
+}
 
-bool inside(const Component& component, Point p) { return inside(pieces(component), p); }
+bool inside(const Component& component, Point p) { return detail::inside(detail::boundary_pieces(component), p); }
 
 InscribedCircle largest_inscribed_circle(const Component& component, double precision) {
   if (!(precision > 0.0)) throw std::invalid_argument("inscribed circle: precision must be positive");

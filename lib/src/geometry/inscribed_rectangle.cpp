@@ -95,11 +95,10 @@ void split_curve(const Curve& c, std::vector<Piece>& out) {
 
 // A component ready for many free-height queries.
 struct Prepared {
-  const Component* component;
   std::vector<Piece> pieces;
   detail::BoundaryIndex boundary;  // for the membership tests (built once: 73 % of a search had gone to them)
   Box bbox;
-  explicit Prepared(const Component& c) : component(&c), boundary(c), bbox(c.outer.bbox()) {
+  explicit Prepared(const Component& c) : boundary(c), bbox(c.outer.bbox()) {
     for (const Curve& k : c.outer.curves) split_curve(k, pieces);
     for (const Loop& h : c.holes) {
       for (const Curve& k : h.curves) split_curve(k, pieces);
