@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -48,6 +49,115 @@ void stadium_parts(const std::vector<Point>& v, double r, std::vector<Region>& p
   for (std::size_t k = 0; k + 1 < v.size(); ++k) parts.push_back(geometry::stadium(v[k], v[k + 1], r));
 }
 
+// The polyline without repeated points in `v`, and r moved by a margin that
+// covers the rounding of the offsets (a few ulps of the coordinates).
+double prepared(const std::vector<Point>& piece, double r, bool superset, std::vector<Point>& v) {
+  v.clear();
+  for (const Point& p : piece) {
+    if (v.empty() || v.back().x != p.x || v.back().y != p.y) v.push_back(p);
+  }
+  double scale = r;
+  for (const Point& p : v) scale = std::max({scale, std::abs(p.x), std::abs(p.y)});
+  const double margin = 1e-12 * scale;
+  return superset ? r + margin : r - margin;
+}
+
+// The tube of a prepared polyline as one polygon and its end disks; false,
+// with nothing added, where that polygon cannot be made (a sharp turn, or
+// offset chains that cross).
+bool tube_polygon(const std::vector<Point>& v, double r, bool superset, std::vector<Region>& parts);
+
+// Chains of pieces: a piece whose first or last point lies within `join` of a
+// chain's free end continues it (turned round if need be; the lowest index
+// first), the chain keeping its own end point. That moves the polyline by at
+// most the distance between the two points, the largest of which is `gap`.
+// A chain that comes back to its start is cut in two (a closed loop's tube is
+// no simple polygon).
+struct Chain {
+  std::vector<Point> points;
+  std::vector<std::size_t> members;  // indices into the pieces, in chain order
+};
+std::vector<Chain> chain_pieces(const std::vector<const std::vector<Point>*>& pieces, double join, double& gap) {
+  gap = 0.0;
+  const auto cell = [join](Point p) {
+    return std::make_pair(static_cast<long long>(std::floor(p.x / join)), static_cast<long long>(std::floor(p.y / join)));
+  };
+  std::map<std::pair<long long, long long>, std::vector<std::size_t>> ends;  // piece indices by end cell
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    ends[cell(pieces[k]->front())].push_back(k);
+    ends[cell(pieces[k]->back())].push_back(k);
+  }
+  std::vector<bool> used(pieces.size(), false);
+  // The unused piece with an end within `join` of p (lowest index), and
+  // whether it is its back that meets p.
+  const auto next_to = [&](Point p, bool& at_back) {
+    std::size_t best = pieces.size();
+    const auto [cx, cy] = cell(p);
+    for (long long i = cx - 1; i <= cx + 1; ++i) {
+      for (long long j = cy - 1; j <= cy + 1; ++j) {
+        const auto it = ends.find({i, j});
+        if (it == ends.end()) continue;
+        for (const std::size_t k : it->second) {
+          if (used[k] || k >= best) continue;
+          const Point a = pieces[k]->front(), b = pieces[k]->back();
+          if (std::hypot(a.x - p.x, a.y - p.y) <= join) {
+            best = k;
+            at_back = false;
+          } else if (std::hypot(b.x - p.x, b.y - p.y) <= join) {
+            best = k;
+            at_back = true;
+          }
+        }
+      }
+    }
+    return best;
+  };
+  std::vector<Chain> chains;
+  for (std::size_t first = 0; first < pieces.size(); ++first) {
+    if (used[first]) continue;
+    used[first] = true;
+    std::deque<Point> pts(pieces[first]->begin(), pieces[first]->end());
+    std::deque<std::size_t> members{first};
+    for (const bool forward : {true, false}) {
+      for (;;) {
+        const Point end = forward ? pts.back() : pts.front();
+        bool at_back = false;
+        const std::size_t k = next_to(end, at_back);
+        if (k == pieces.size()) break;
+        used[k] = true;
+        std::vector<Point> add(pieces[k]->begin(), pieces[k]->end());
+        // Oriented to leave from `end`: forward, its meeting point first.
+        if (at_back == forward) std::reverse(add.begin(), add.end());
+        const Point meet = forward ? add.front() : add.back();
+        gap = std::max(gap, std::hypot(meet.x - end.x, meet.y - end.y));
+        if (forward) {
+          pts.insert(pts.end(), add.begin() + 1, add.end());
+          members.push_back(k);
+        } else {
+          pts.insert(pts.begin(), add.begin(), add.end() - 1);
+          members.push_front(k);
+        }
+      }
+    }
+    Chain c{{pts.begin(), pts.end()}, {members.begin(), members.end()}};
+    const Point a = c.points.front(), b = c.points.back();
+    if (c.members.size() >= 2 && std::hypot(a.x - b.x, a.y - b.y) <= join) {
+      // Closed: two halves, each ending at the first piece's start or at the cut.
+      std::size_t cut = 0;
+      for (std::size_t m = 0; m < c.members.size() / 2; ++m) cut += pieces[c.members[m]]->size() - 1;
+      Chain second{{c.points.begin() + static_cast<std::ptrdiff_t>(cut), c.points.end()},
+                   {c.members.begin() + static_cast<std::ptrdiff_t>(c.members.size() / 2), c.members.end()}};
+      c.points.resize(cut + 1);
+      c.members.resize(c.members.size() / 2);
+      chains.push_back(std::move(c));
+      chains.push_back(std::move(second));
+    } else {
+      chains.push_back(std::move(c));
+    }
+  }
+  return chains;
+}
+
 }  // namespace
 
 Region polyline_tube(const std::vector<Point>& piece, double r, bool superset) {
@@ -58,19 +168,17 @@ Region polyline_tube(const std::vector<Point>& piece, double r, bool superset) {
 
 void polyline_tube_parts(const std::vector<Point>& piece, double r, bool superset, std::vector<Region>& parts) {
   std::vector<Point> v;
-  for (const Point& p : piece) {
-    if (v.empty() || v.back().x != p.x || v.back().y != p.y) v.push_back(p);
-  }
+  r = prepared(piece, r, superset, v);
   if (v.empty() || !(r > 0.0)) return;
-  double scale = r;
-  for (const Point& p : v) scale = std::max({scale, std::abs(p.x), std::abs(p.y)});
-  // Rounding of the offsets (a few ulps of the coordinates) is covered by a margin.
-  const double margin = 1e-12 * scale;
-  r = superset ? r + margin : r - margin;
-  if (!(r > 0.0)) return;
+  if (!tube_polygon(v, r, superset, parts)) stadium_parts(v, r, parts);
+}
+
+namespace {
+
+bool tube_polygon(const std::vector<Point>& v, double r, bool superset, std::vector<Region>& parts) {
   if (v.size() == 1) {
     parts.push_back(geometry::disk(v[0], r));
-    return;
+    return true;
   }
   const std::size_t n = v.size() - 1;  // segments
   std::vector<Point> normal(n);
@@ -91,9 +199,9 @@ void polyline_tube_parts(const std::vector<Point>& piece, double r, bool superse
   for (std::size_t k = 1; k < n; ++k) {
     const Point a = normal[k - 1], b = normal[k];
     const double dot = a.x * b.x + a.y * b.y, cross = a.x * b.y - a.y * b.x;
-    if (!(1.0 + dot > 0.5)) return stadium_parts(v, r, parts);  // a turn over 120°
+    if (!(1.0 + dot > 0.5)) return false;  // a turn over 120°
     const double tan_half = std::abs(cross) / (1.0 + dot);
-    if (r * tan_half > 0.999 * std::min(length[k - 1], length[k])) return stadium_parts(v, r, parts);
+    if (r * tan_half > 0.999 * std::min(length[k - 1], length[k])) return false;
     const Point m{(a.x + b.x) / (1.0 + dot), (a.y + b.y) / (1.0 + dot)};
     if (cross == 0.0) {
       left.push_back(add(v[k], a, r));
@@ -118,11 +226,14 @@ void polyline_tube_parts(const std::vector<Point>& piece, double r, bool superse
   try {
     parts.push_back(geometry::polygon(ring));
   } catch (const std::invalid_argument&) {
-    return stadium_parts(v, r, parts);  // the offset chains cross (the piece bends back within 2r)
+    return false;  // the offset chains cross (the piece bends back within 2r)
   }
   parts.push_back(geometry::disk(v.front(), r));
   parts.push_back(geometry::disk(v.back(), r));
+  return true;
 }
+
+}  // namespace
 
 double distance_to_curves(const std::vector<std::vector<Point>>& curves, Point p) {
   double best = std::numeric_limits<double>::infinity();
@@ -287,20 +398,38 @@ SingularTubes singular_tubes(const mechanisms::Design& file, const Region& withi
     }
     long_pieces.push_back(k);
   }
-  // The long pieces' tubes (exact polygons and disks) are built as parallel
-  // tasks over fixed blocks of pieces and kept in piece order, so the parts
-  // do not depend on the number of threads.
+  // The long pieces joined where they meet (each traced cell's piece ends
+  // on the cell's edge, where its neighbour's starts, to rounding): one
+  // polygon and two disks per chain instead of per cell, for the unions below
+  // (the biglide's straight S: 60 pieces, 184 parts, became 1 chain). A
+  // chain's polygon has the radius margin of the points it moved; where it
+  // cannot be made, its pieces' tubes are taken.
+  std::vector<const std::vector<Point>*> long_curves;
+  for (const std::size_t k : long_pieces) long_curves.push_back(&t.curves[k]);
+  double gap = 0.0;
+  const std::vector<Chain> chains =
+      t.error > 0.0 ? chain_pieces(long_curves, t.error, gap) : std::vector<Chain>{};
+  const auto add_tube = [&](const Chain& chain, double r, bool superset, std::vector<Region>& parts) {
+    if (chain.members.size() >= 2) {
+      std::vector<Point> v;
+      const double rc = prepared(chain.points, superset ? r + gap : r - gap, superset, v);
+      if (!(rc > 0.0) || tube_polygon(v, rc, superset, parts)) return;
+    }
+    for (const std::size_t m : chain.members) polyline_tube_parts(*long_curves[m], r, superset, parts);
+  };
+  // The chains' tubes (exact polygons and disks) are built as parallel tasks
+  // over fixed blocks of chains and kept in chain order, so the parts do not
+  // depend on the number of threads.
   pkmws::detail::ParallelPolicy policy;
   policy.threads = options.threads;
-  policy.serial_threshold = 32;  // pieces; each tube takes tens of microseconds
+  policy.serial_threshold = 32;  // chains; each tube takes tens of microseconds
   constexpr std::size_t per_block = 8;
-  const std::size_t blocks = pkmws::detail::block_count(long_pieces.size(), per_block);
+  const std::size_t blocks = pkmws::detail::block_count(chains.size(), per_block);
   std::vector<std::vector<Region>> block_in(blocks), block_out(blocks);
-  pkmws::detail::for_each_block(policy, blocks, long_pieces.size(), [&](std::size_t b) {
-    for (std::size_t i = b * per_block; i < std::min(long_pieces.size(), (b + 1) * per_block); ++i) {
-      const auto& piece = t.curves[long_pieces[i]];
-      polyline_tube_parts(piece, delta + t.error, true, block_in[b]);
-      if (delta - t.error > 0.0) polyline_tube_parts(piece, delta - t.error, false, block_out[b]);
+  pkmws::detail::for_each_block(policy, blocks, chains.size(), [&](std::size_t b) {
+    for (std::size_t i = b * per_block; i < std::min(chains.size(), (b + 1) * per_block); ++i) {
+      add_tube(chains[i], delta + t.error, true, block_in[b]);
+      if (delta - t.error > 0.0) add_tube(chains[i], delta - t.error, false, block_out[b]);
     }
   });
   for (std::size_t b = 0; b < blocks; ++b) {
