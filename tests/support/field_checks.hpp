@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <initializer_list>
 
@@ -12,6 +14,38 @@
 #include "pkmws/geometry/types.hpp"
 
 namespace pkmws::test {
+
+// The side test (ScalarField::side) against 81 sampled values, at levels
+// below, between and above them: `inside` only where every sample is <= the
+// level, `outside` only where every one is above it (the middle level has
+// samples on both sides, so neither answer may come). Returns how many of
+// the two outer levels (just beyond the samples' range) it decided.
+template <class Field>
+int check_side(const Field& f, const geometry::Box& box) {
+  std::vector<double> values;
+  for (int a = 0; a <= 8; ++a) {
+    for (int b = 0; b <= 8; ++b) {
+      const double v = f.value({box.min.x + box.width() * a / 8.0, box.min.y + box.height() * b / 8.0});
+      if (std::isfinite(v)) values.push_back(v);
+    }
+  }
+  if (values.empty()) return 0;
+  std::sort(values.begin(), values.end());
+  const double lo = values.front(), hi = values.back(), spread = hi - lo;
+  int decided = 0;
+  for (const double level : {lo - 0.5 * spread, 0.5 * (lo + hi), hi + 0.5 * spread}) {
+    const certified::CellState s = f.side(box, level);
+    const std::size_t above = static_cast<std::size_t>(std::count_if(values.begin(), values.end(), [&](double v) { return v > level; }));
+    if (s == certified::CellState::inside) {
+      EXPECT_EQ(above, 0u) << "level " << level;
+    }
+    if (s == certified::CellState::outside) {
+      EXPECT_EQ(above, values.size()) << "level " << level;
+    }
+    if (s != certified::CellState::undecided && level != 0.5 * (lo + hi)) ++decided;
+  }
+  return decided;
+}
 
 // Jets by finite differences; interval enclosures contain sampled values.
 template <class Field>
@@ -61,6 +95,7 @@ void check_field(const Field& f, geometry::Point p, double h, const geometry::Bo
       EXPECT_TRUE(at(jp.dxx, jq.dxx) && at(jp.dxy, jq.dxy) && at(jp.dyy, jq.dyy));
     }
   }
+  check_side(f, box);
 }
 
 // The field's sub-level sets are the criterion's at p: value <= t <=>

@@ -70,6 +70,9 @@ bool holds_both(const std::vector<Constraint>& cs, const Box& b) {
 // lies in F's smooth domain (then F's gradient over the box, which that form
 // takes, is stored in `grad` if given).
 Interval enclose_value(const ScalarField& f, const Box& box, double level, std::optional<Grad<Interval>>* grad = nullptr) {
+  const CellState side = f.side(box, level);
+  if (side == CellState::inside) return {-inf, level};
+  if (side == CellState::outside) return {std::nextafter(level, inf), inf};
   const Interval cheap = f.enclose_cheap(box);
   if (cheap.hi <= level || cheap.lo > level) return cheap;
   Interval v = f.enclose(box);

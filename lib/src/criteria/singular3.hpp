@@ -32,6 +32,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "pkmws/certified/cell_region.hpp"
 #include "pkmws/certified/interval.hpp"
 
 namespace pkmws::criteria::detail {
@@ -629,48 +630,86 @@ template <class T> Cubic<decltype(value_part(std::declval<T>()))> values(const C
   return {value_part(c.c2), value_part(c.c1), value_part(c.c0)};
 }
 
-// λ over a box in first-order (mean-value) forms: the coefficients
-//   c(B) ⊆ c(m) + ∇c(B)·d
-// (c(m) in plain intervals, ∇c(B) in gradients over B), their root Λ₀, then
-//   λ(B) ⊆ λ(m) + ∇λ(B)·d
-// with ∇λ(B) by implicit differentiation over B with Λ₀ (the mean value
-// theorem along the segment from m, valid where p_μ(Λ₀) excludes 0). Wider
-// than root_over_box by about its second-order terms, but without its jet (a
-// fifth of the products): the cell tests try it first
-// (ScalarField::enclose_cheap; it decides about a third of the PAMINSA κ
-// cells' tests).
-template <class F>
-std::pair<certified::Interval, certified::Interval> roots_first_order(const F& cubic_of, const certified::Interval& x,
-                                                                      const certified::Interval& y, bool smallest) {
+// Which side of `level` a conditioning field lies on over a box, from the
+// signs of p at one or two points chosen from the centre's roots, without
+// enclosing the roots (ScalarField::side; tried before every enclosure):
+//  * all roots below a: p(a) > 0, p'(a) > 0, p''(a) > 0 (Taylor from a with
+//    the monic cube); all above b: p(b) < 0, p'(b) > 0, p''(b) < 0;
+//  * a root above a (so λ_1 > a): p(a) < 0 (p grows without bound); a root
+//    below b (so λ_3 < b): p(b) > 0 (p(0) = -c_0 <= 0).
+// The velocity ratio (F = λ_1): inside where every root is below the level,
+// outside where one is above it. The condition number (F = -λ_3/λ_1, level
+// -t): inside where the roots lie in (a t, a) for one a, outside where λ_1 > a
+// and λ_3 < a t; a leaves both roots equal room in units of their first-order
+// spreads over the box (from the centre's gradients). p is enclosed at each
+// point in the mean-value form of CubicBox: with the coefficients' gradients
+// over the box (root_over_box's second-order forms take the boxes this leaves).
+template <class Model>
+certified::CellState conditioning_side(const Model& model, const certified::Interval& x, const certified::Interval& y,
+                                       bool ratio, double level) {
+  using certified::CellState;
   using certified::Interval;
   using G = certified::Grad<Interval>;
+  using Gd = certified::Grad<double>;
+  const auto cubic = [&model](const auto& u, const auto& v) { return model.jacobian_cubic(u, v); };
   const double xm = x.mid(), ym = y.mid();
+  const double t = -level;
+  if (ratio && !(t > 0.0 && t < 1.0)) return CellState::undecided;
+  // The centre's roots and their first-order spread over the box (in
+  // double: they only choose the test point).
+  const Cubic<Gd> cg = cubic(Gd::variable_x(xm), Gd::variable_y(ym));
+  const Cubic<double> cd = values(cg);
+  if (!std::isfinite(cd.c2) || !std::isfinite(cd.c1) || !std::isfinite(cd.c0)) return CellState::undecided;
+  const double hx = 0.5 * x.width(), hy = 0.5 * y.width();
+  const auto spread = [&](Root which, double& l) {
+    l = cubic_root(which, cd);
+    const Gd j = root_jet(cg, l, cd, cubic_slope(cd, l));
+    return std::abs(j.dx) * hx + std::abs(j.dy) * hy;
+  };
+  double l1 = 0.0, l3 = 0.0;
+  const double d1 = spread(Root::largest, l1);
+  double a = level;
+  bool inside = l1 <= level;
+  if (ratio) {
+    const double d3 = spread(Root::smallest, l3);
+    // The point a with equal room on both sides in units of the spreads:
+    // inside, λ_1 + d1 s = a = (λ_3 - d3 s) / t; outside, λ_1 - d1 s = a = (λ_3 + d3 s) / t.
+    inside = l1 * t <= l3;
+    const double room = std::abs(l3 / t - l1), per = d1 + d3 / t;
+    const double s = per > 0.0 ? room / per : 0.0;
+    a = inside ? (per > 0.0 ? l1 + d1 * s : std::sqrt(l1 * l3 / t)) : (per > 0.0 ? l1 - d1 * s : std::sqrt(l1 * l3 / t));
+  }
+  if (!(a > 0.0) || !std::isfinite(a)) return CellState::undecided;
+  const Interval at = Interval(a) * Interval(t);
+  // The tests with p enclosed in a box's mean-value form; p'(μ) too, with
+  // ∂p'/∂x = -2 c2_x μ + c1_x.
+  const auto decide = [&](const CubicBox& box) {
+    const auto value = [&](double mu) { return box.value(Interval(mu)); };
+    const auto slope = [&](double mu) {
+      const Interval m(mu);
+      const Interval moved = (box.gx.c1 - twice(box.gx.c2 * m)) * box.dx + (box.gy.c1 - twice(box.gy.c2 * m)) * box.dy;
+      return tighter(cubic_slope(box.c, m), cubic_slope(box.m, m) + moved);
+    };
+    const auto curvature = [&](double mu) { return Interval(6.0) * Interval(mu) - twice(box.c.c2); };
+    const auto above_all = [&](double mu) { return value(mu).lo > 0.0 && slope(mu).lo > 0.0 && curvature(mu).lo > 0.0; };
+    const auto below_all = [&](double mu) { return value(mu).hi < 0.0 && slope(mu).lo > 0.0 && curvature(mu).hi < 0.0; };
+    if (!ratio) {
+      if (inside) return above_all(a) ? CellState::inside : CellState::undecided;  // λ_1 < level
+      return value(a).hi < 0.0 ? CellState::outside : CellState::undecided;        // λ_1 > level
+    }
+    if (inside) return above_all(a) && below_all(at.hi) ? CellState::inside : CellState::undecided;  // λ_3 / λ_1 > a t / a
+    return value(a).hi < 0.0 && value(at.lo).lo > 0.0 ? CellState::outside : CellState::undecided;  // λ_3 / λ_1 < a t / a
+  };
+  const auto finite = [](const Cubic<Interval>& c) { return c.c2.finite() && c.c1.finite() && c.c0.finite(); };
   const Interval dx = x - Interval(xm), dy = y - Interval(ym);
-  const Cubic<Interval> vm = cubic_of(Interval(xm), Interval(ym));
-  Cubic<G> b = cubic_of(G::variable_x(x), G::variable_y(y));
-  for (auto [over, at_m] : {std::pair{&b.c2, vm.c2}, std::pair{&b.c1, vm.c1}, std::pair{&b.c0, vm.c0}}) {
+  const Cubic<Interval> vm = cubic(Interval(xm), Interval(ym));
+  Cubic<G> g = cubic(G::variable_x(x), G::variable_y(y));
+  for (auto [over, at_m] : {std::pair{&g.c2, vm.c2}, std::pair{&g.c1, vm.c1}, std::pair{&g.c0, vm.c0}}) {
     over->v = tighter(over->v, at_m + over->dx * dx + over->dy * dy);
   }
-  const Cubic<Interval> c = values(b);
-  const CubicBox box(c, vm, {b.c2.dx, b.c1.dx, b.c0.dx}, {b.c2.dy, b.c1.dy, b.c0.dy}, dx, dy);
-  const auto root = [&](Root which) {
-    const Interval l0 = cubic_root(which, box);
-    const Interval pm = root_slope(which, box, l0);
-    if (pm.contains_zero()) return l0;
-    const G lb = root_jet(b, l0, c, pm);
-    return tighter(l0, cubic_root(which, vm) + lb.dx * dx + lb.dy * dy);
-  };
-  return {root(Root::largest), smallest ? root(Root::smallest) : Interval(0.0)};
-}
-
-// The conditioning fields' value over a box in the first-order forms
-// (ScalarField::enclose_cheap): λ_1 (`ratio` false), or -λ_3 / λ_1 (`ratio`:
-// -1/κ²), for a model with `jacobian_cubic(x, y)`.
-template <class Model>
-certified::Interval conditioning_first_order(const Model& model, double x0, double y0, double x1, double y1, bool ratio) {
-  const auto cubic = [&model](const auto& u, const auto& v) { return model.jacobian_cubic(u, v); };
-  const auto [l1, l3] = roots_first_order(cubic, certified::Interval(x0, x1), certified::Interval(y0, y1), ratio);
-  return ratio ? -(l3 / l1) : l1;
+  const Cubic<Interval> c = values(g);
+  if (finite(c)) return decide(CubicBox(c, vm, {g.c2.dx, g.c1.dx, g.c0.dx}, {g.c2.dy, g.c1.dy, g.c0.dy}, dx, dy));
+  return CellState::undecided;
 }
 
 // The conditioning fields over a box from the rows' squared norms n_j = |m_j|²

@@ -49,6 +49,11 @@ class ScalarField {
   /// cell tests try it first and call enclose() only where it decides
   /// nothing. Default: none (the whole line).
   virtual Interval enclose_cheap(const geometry::Box& /*box*/) const { return Interval::whole(); }
+  /// The box's side of `level` where a test cheaper than any enclosure can
+  /// tell it: `inside` only if F <= level on the whole box (∩ domain),
+  /// `outside` only if F > level there; else `undecided` (the default), and
+  /// the cell tests go on with the enclosures.
+  virtual CellState side(const geometry::Box& /*box*/, double /*level*/) const { return CellState::undecided; }
   /// Encloses F and its derivatives over the box; meaningful only for boxes
   /// the domain test calls `inside` (F is C² there).
   virtual Jet<Interval> jet(const geometry::Box& box) const = 0;

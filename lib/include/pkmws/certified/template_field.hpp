@@ -4,7 +4,8 @@
 // Jet<Interval> (use only +, -, *, /, sqr, sqrt, abs, max(., double) on T),
 // plus `CellState domain(const Box&) const` (where the field is C²) and
 // optionally `bool excluded(const Box&) const` (ScalarField::excluded) and
-// `Interval enclose_cheap(const Box&) const` (ScalarField::enclose_cheap).
+// `Interval enclose_cheap(const Box&) const` (ScalarField::enclose_cheap) and
+// `CellState side(const Box&, double) const` (ScalarField::side).
 #pragma once
 
 #include <utility>
@@ -37,6 +38,14 @@ class TemplateField final : public ScalarField {
       return impl_.enclose_cheap(b);
     } else {
       return Interval::whole();
+    }
+  }
+  /// `CellState side(const Box&, double) const` of Impl when it has one (see ScalarField).
+  CellState side(const geometry::Box& b, double level) const override {
+    if constexpr (requires { impl_.side(b, level); }) {
+      return impl_.side(b, level);
+    } else {
+      return CellState::undecided;
     }
   }
   Jet<Interval> jet(const geometry::Box& b) const override {

@@ -157,15 +157,19 @@ struct ThreeRprTwist {
     }
     return sqrt(p.rho2) * num / abs(p.det);
   }
-  // ScalarField::enclose_cheap: the conditioning fields' first-order forms
-  // (criteria/singular3.hpp); the others' natural enclosure is cheap already.
-  // Intersected with the rows' bound (detail::conditioning_from_rows), which
-  // decides the boxes about the base joint points e_j, where a leg has zero
-  // length and the roots' enclosures fail at every scale.
+  // ScalarField::side: the conditioning fields' sign tests (criteria/singular3.hpp).
+  CellState side(const Box& b, double level) const {
+    if (what < 3) return CellState::undecided;
+    return detail::conditioning_side(*this, Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y), what == 4, level);
+  }
+  // ScalarField::enclose_cheap: the conditioning fields' rows' bound
+  // (detail::conditioning_from_rows), which decides the boxes about the base
+  // joint points e_j, where a leg has zero length and the roots' enclosures
+  // (and the side test) fail at every scale; the others' natural enclosure is
+  // cheap already.
   Interval enclose_cheap(const Box& b) const {
     if (what < 3) return Interval::whole();
-    const Interval rows = detail::conditioning_from_rows(row_norms(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y)), what == 4);
-    return detail::tighter(detail::conditioning_first_order(*this, b.min.x, b.min.y, b.max.x, b.max.y, what == 4), rows);
+    return detail::conditioning_from_rows(row_norms(Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y)), what == 4);
   }
   // |m_j|², row j of dq/dx' squared, over a box: with |n_j|² = ρ_j² it is
   // 1/ρ_j² + ((c_j x n_j)/L)²/ρ_j⁴ (leg angle) or 1 + ((c_j x n_j)/L)²/ρ_j²

@@ -140,11 +140,10 @@ struct ThreeRrpChains {
     // docs/theory/three_dof.md: R_i,max = f |v_P,i| + |m| |ω_i|.
     return (f * sqrt(sqr(w0) + sqr(w1)) + m * abs(w2)) / abs(det);
   }
-  // ScalarField::enclose_cheap: the conditioning fields' first-order forms
-  // (criteria/singular3.hpp); the others' natural enclosure is cheap already.
-  Interval enclose_cheap(const Box& b) const {
-    if (what < 3) return Interval::whole();
-    return detail::conditioning_first_order(*this, b.min.x, b.min.y, b.max.x, b.max.y, what == 4);
+  // ScalarField::side: the conditioning fields' sign tests (criteria/singular3.hpp).
+  CellState side(const Box& b, double level) const {
+    if (what < 3) return CellState::undecided;
+    return detail::conditioning_side(*this, Interval(b.min.x, b.max.x), Interval(b.min.y, b.max.y), what == 4, level);
   }
   // ScalarField::excluded: for the conditioning fields, the cranks' reach
   // alone (their smoothness test, the roots' enclosures, never says `outside`).
