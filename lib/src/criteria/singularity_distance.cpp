@@ -72,15 +72,28 @@ bool tube_polygon(const std::vector<Point>& v, double r, bool superset, std::vec
 // first), the chain keeping its own end point. That moves the polyline by at
 // most the distance between the two points, the largest of which is `gap`.
 // A chain that comes back to its start is cut in two (a closed loop's tube is
-// no simple polygon).
+// no simple polygon). With `join` 0 every piece is a chain of its own.
 struct Chain {
   std::vector<Point> points;
   std::vector<std::size_t> members;  // indices into the pieces, in chain order
 };
 std::vector<Chain> chain_pieces(const std::vector<const std::vector<Point>*>& pieces, double join, double& gap) {
   gap = 0.0;
-  const auto cell = [join](Point p) {
-    return std::make_pair(static_cast<long long>(std::floor(p.x / join)), static_cast<long long>(std::floor(p.y / join)));
+  std::vector<Chain> chains;
+  if (!(join > 0.0)) {  // nothing joins: each piece is a chain of its own
+    for (std::size_t k = 0; k < pieces.size(); ++k) chains.push_back({*pieces[k], {k}});
+    return chains;
+  }
+  // Ends are bucketed by a grid of side >= join (so the ends within join of a
+  // point lie in its bucket's 3 x 3 block), coarse enough that the buckets'
+  // indices stay small.
+  double scale = 0.0;
+  for (const auto* piece : pieces) {
+    for (const Point& p : {piece->front(), piece->back()}) scale = std::max({scale, std::abs(p.x), std::abs(p.y)});
+  }
+  const double side = std::max(join, 1e-9 * scale);
+  const auto cell = [side](Point p) {
+    return std::make_pair(static_cast<long long>(std::floor(p.x / side)), static_cast<long long>(std::floor(p.y / side)));
   };
   std::map<std::pair<long long, long long>, std::vector<std::size_t>> ends;  // piece indices by end cell
   for (std::size_t k = 0; k < pieces.size(); ++k) {
@@ -112,7 +125,6 @@ std::vector<Chain> chain_pieces(const std::vector<const std::vector<Point>*>& pi
     }
     return best;
   };
-  std::vector<Chain> chains;
   for (std::size_t first = 0; first < pieces.size(); ++first) {
     if (used[first]) continue;
     used[first] = true;
@@ -407,8 +419,7 @@ SingularTubes singular_tubes(const mechanisms::Design& file, const Region& withi
   std::vector<const std::vector<Point>*> long_curves;
   for (const std::size_t k : long_pieces) long_curves.push_back(&t.curves[k]);
   double gap = 0.0;
-  const std::vector<Chain> chains =
-      t.error > 0.0 ? chain_pieces(long_curves, t.error, gap) : std::vector<Chain>{};
+  const std::vector<Chain> chains = chain_pieces(long_curves, t.error, gap);
   const auto add_tube = [&](const Chain& chain, double r, bool superset, std::vector<Region>& parts) {
     if (chain.members.size() >= 2) {
       std::vector<Point> v;
