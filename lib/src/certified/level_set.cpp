@@ -65,10 +65,12 @@ bool holds_both(const std::vector<Constraint>& cs, const Box& b) {
   return false;
 }
 
-// Value enclosure of F over a box: F's cheap form if that decides, else its
-// natural form, intersected with the centred (mean-value) form when the box
-// lies in F's smooth domain (then F's gradient over the box, which that form
-// takes, is stored in `grad` if given).
+// Value enclosure of F over a box against `level`: where F's side test
+// decides, an interval on that side of the level only (the cell tests read
+// nothing else); else F's cheap form if that decides, else its natural form,
+// intersected with the centred (mean-value) form when the box lies in F's
+// smooth domain (then F's gradient over the box, which that form takes, is
+// stored in `grad` if given).
 Interval enclose_value(const ScalarField& f, const Box& box, double level, std::optional<Grad<Interval>>* grad = nullptr) {
   const CellState side = f.side(box, level);
   if (side == CellState::inside) return {-inf, level};
