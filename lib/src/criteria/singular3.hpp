@@ -165,6 +165,13 @@ struct CubicBox {
     if (!has_gradients) return natural;
     return tighter(natural, cubic_value(m, mu) + moved(mu));
   }
+  // p'(μ) in the same mean-value form (∂p'/∂x = -2 c2_x μ + c1_x).
+  certified::Interval slope(const certified::Interval& mu) const {
+    const certified::Interval natural = cubic_slope(c, mu);
+    if (!has_gradients) return natural;
+    const certified::Interval slope_moved = (gx.c1 - twice(gx.c2 * mu)) * dx + (gy.c1 - twice(gy.c2 * mu)) * dy;
+    return tighter(natural, cubic_slope(m, mu) + slope_moved);
+  }
   // root_start and root_end of this box, each computed once: a box's roots
   // are asked for several times (each root's enclosure, p' at it, the other
   // root's end for both).
@@ -676,31 +683,10 @@ certified::CellState conditioning_side(const Model& model, const certified::Inte
     // inside, λ_1 + d1 s = a = (λ_3 - d3 s) / t; outside, λ_1 - d1 s = a = (λ_3 + d3 s) / t.
     inside = l1 * t <= l3;
     const double room = std::abs(l3 / t - l1), per = d1 + d3 / t;
-    const double s = per > 0.0 ? room / per : 0.0;
-    a = inside ? (per > 0.0 ? l1 + d1 * s : std::sqrt(l1 * l3 / t)) : (per > 0.0 ? l1 - d1 * s : std::sqrt(l1 * l3 / t));
+    // (No spread at all: the geometric mean of λ_1 and λ_3 / t.)
+    a = per > 0.0 ? (inside ? l1 + d1 * (room / per) : l1 - d1 * (room / per)) : std::sqrt(l1 * l3 / t);
   }
   if (!(a > 0.0) || !std::isfinite(a)) return CellState::undecided;
-  const Interval at = Interval(a) * Interval(t);
-  // The tests with p enclosed in a box's mean-value form; p'(μ) too, with
-  // ∂p'/∂x = -2 c2_x μ + c1_x.
-  const auto decide = [&](const CubicBox& box) {
-    const auto value = [&](double mu) { return box.value(Interval(mu)); };
-    const auto slope = [&](double mu) {
-      const Interval m(mu);
-      const Interval moved = (box.gx.c1 - twice(box.gx.c2 * m)) * box.dx + (box.gy.c1 - twice(box.gy.c2 * m)) * box.dy;
-      return tighter(cubic_slope(box.c, m), cubic_slope(box.m, m) + moved);
-    };
-    const auto curvature = [&](double mu) { return Interval(6.0) * Interval(mu) - twice(box.c.c2); };
-    const auto above_all = [&](double mu) { return value(mu).lo > 0.0 && slope(mu).lo > 0.0 && curvature(mu).lo > 0.0; };
-    const auto below_all = [&](double mu) { return value(mu).hi < 0.0 && slope(mu).lo > 0.0 && curvature(mu).hi < 0.0; };
-    if (!ratio) {
-      if (inside) return above_all(a) ? CellState::inside : CellState::undecided;  // λ_1 < level
-      return value(a).hi < 0.0 ? CellState::outside : CellState::undecided;        // λ_1 > level
-    }
-    if (inside) return above_all(a) && below_all(at.hi) ? CellState::inside : CellState::undecided;  // λ_3 / λ_1 > a t / a
-    return value(a).hi < 0.0 && value(at.lo).lo > 0.0 ? CellState::outside : CellState::undecided;  // λ_3 / λ_1 < a t / a
-  };
-  const auto finite = [](const Cubic<Interval>& c) { return c.c2.finite() && c.c1.finite() && c.c0.finite(); };
   const Interval dx = x - Interval(xm), dy = y - Interval(ym);
   const Cubic<Interval> vm = cubic(Interval(xm), Interval(ym));
   Cubic<G> g = cubic(G::variable_x(x), G::variable_y(y));
@@ -708,8 +694,21 @@ certified::CellState conditioning_side(const Model& model, const certified::Inte
     over->v = tighter(over->v, at_m + over->dx * dx + over->dy * dy);
   }
   const Cubic<Interval> c = values(g);
-  if (finite(c)) return decide(CubicBox(c, vm, {g.c2.dx, g.c1.dx, g.c0.dx}, {g.c2.dy, g.c1.dy, g.c0.dy}, dx, dy));
-  return CellState::undecided;
+  if (!c.c2.finite() || !c.c1.finite() || !c.c0.finite()) return CellState::undecided;
+  // The tests with p and p' enclosed in the box's mean-value form.
+  const CubicBox box(c, vm, {g.c2.dx, g.c1.dx, g.c0.dx}, {g.c2.dy, g.c1.dy, g.c0.dy}, dx, dy);
+  const auto value = [&](double mu) { return box.value(Interval(mu)); };
+  const auto slope = [&](double mu) { return box.slope(Interval(mu)); };
+  const auto curvature = [&](double mu) { return Interval(6.0) * Interval(mu) - twice(c.c2); };
+  const auto above_all = [&](double mu) { return value(mu).lo > 0.0 && slope(mu).lo > 0.0 && curvature(mu).lo > 0.0; };
+  const auto below_all = [&](double mu) { return value(mu).hi < 0.0 && slope(mu).lo > 0.0 && curvature(mu).hi < 0.0; };
+  if (!ratio) {
+    if (inside) return above_all(a) ? CellState::inside : CellState::undecided;  // λ_1 < level
+    return value(a).hi < 0.0 ? CellState::outside : CellState::undecided;        // λ_1 > level
+  }
+  const Interval at = Interval(a) * Interval(t);
+  if (inside) return above_all(a) && below_all(at.hi) ? CellState::inside : CellState::undecided;  // λ_3 / λ_1 > a t / a
+  return value(a).hi < 0.0 && value(at.lo).lo > 0.0 ? CellState::outside : CellState::undecided;  // λ_3 / λ_1 < a t / a
 }
 
 // The conditioning fields over a box from the rows' squared norms n_j = |m_j|²

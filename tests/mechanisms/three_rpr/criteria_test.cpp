@@ -247,18 +247,21 @@ TEST(ThreeRprConditioning, CorrelatedCoefficientsNarrowTheRoots) {
 // origin (the side test's first-order spreads at a box centred there are 0
 // for λ_3, however much it varies over the box).
 struct DiagonalConditioning {
+  template <class T> static std::array<T, 3> diagonal(const T& x, const T& y) {
+    return {0.1 * x + 0.05 * y + 3.0, 0.2 * y + 1.0, x * x + 0.5 * (y * y) + 0.2};
+  }
   template <class T> criteria::detail::Cubic<T> jacobian_cubic(const T& x, const T& y) const {
     const double rot[3][3] = {{0.6, -0.8, 0.0}, {0.48, 0.36, -0.8}, {0.64, 0.48, 0.6}};
-    const T d[3] = {0.1 * x + 0.05 * y + 3.0, 0.2 * y + 1.0, x * x + 0.5 * (y * y) + 0.2};
+    const std::array<T, 3> d = diagonal(x, y);
     T a[3][3];
     for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) a[i][j] = d[i] * rot[i][j];
+      for (int j = 0; j < 3; ++j) a[i][j] = d[static_cast<std::size_t>(i)] * rot[i][j];
     }
     return criteria::detail::gram_invariants(a);
   }
   static std::array<double, 3> roots(double x, double y) {  // λ_1 >= λ_2 >= λ_3
-    std::array<double, 3> l{std::pow(0.1 * x + 0.05 * y + 3.0, 2), std::pow(0.2 * y + 1.0, 2),
-                            std::pow(x * x + 0.5 * y * y + 0.2, 2)};
+    std::array<double, 3> l = diagonal(x, y);
+    for (double& v : l) v *= v;
     std::sort(l.begin(), l.end(), std::greater<>());
     return l;
   }
@@ -279,18 +282,17 @@ TEST(ThreeRprConditioning, SideTestAgainstClosedFormRoots) {
   std::mt19937 rng(12);
   std::uniform_real_distribution<double> u(-0.4, 0.4), size(-3.0, -0.5);
   int decided = 0, beyond = 0;
+  // The roots at the box's 11 x 11 points.
+  std::vector<std::array<double, 3>> grid;
   const auto check = [&](const Interval& x, const Interval& y, bool ratio, double level, bool outer) {
     const CellState s = criteria::detail::conditioning_side(model, x, y, ratio, level);
-    for (int a = 0; a <= 10; ++a) {
-      for (int b = 0; b <= 10; ++b) {
-        const auto l = DiagonalConditioning::roots(x.lo + x.width() * a / 10.0, y.lo + y.width() * b / 10.0);
-        const bool in = ratio ? l[2] / l[0] >= -level : l[0] <= level;
-        if (s == CellState::inside) {
-          EXPECT_TRUE(in) << x.lo << " " << y.lo << " " << level << " ratio " << ratio;
-        }
-        if (s == CellState::outside) {
-          EXPECT_FALSE(in) << x.lo << " " << y.lo << " " << level << " ratio " << ratio;
-        }
+    for (const auto& l : grid) {
+      const bool in = ratio ? l[2] / l[0] >= -level : l[0] <= level;
+      if (s == CellState::inside) {
+        EXPECT_TRUE(in) << x.lo << " " << y.lo << " " << level << " ratio " << ratio;
+      }
+      if (s == CellState::outside) {
+        EXPECT_FALSE(in) << x.lo << " " << y.lo << " " << level << " ratio " << ratio;
       }
     }
     if (outer) {
@@ -304,14 +306,15 @@ TEST(ThreeRprConditioning, SideTestAgainstClosedFormRoots) {
     boxes.emplace_back(Interval(cx - h, cx + h), Interval(cy - h, cy + h));
   }
   for (const auto& [x, y] : boxes) {
+    grid.clear();
+    for (int a = 0; a <= 10; ++a) {
+      for (int b = 0; b <= 10; ++b) {
+        grid.push_back(DiagonalConditioning::roots(x.lo + x.width() * a / 10.0, y.lo + y.width() * b / 10.0));
+      }
+    }
     for (const bool ratio : {true, false}) {
       std::vector<double> v;
-      for (int a = 0; a <= 10; ++a) {
-        for (int b = 0; b <= 10; ++b) {
-          const auto l = DiagonalConditioning::roots(x.lo + x.width() * a / 10.0, y.lo + y.width() * b / 10.0);
-          v.push_back(ratio ? -(l[2] / l[0]) : l[0]);
-        }
-      }
+      for (const auto& l : grid) v.push_back(ratio ? -(l[2] / l[0]) : l[0]);
       std::sort(v.begin(), v.end());
       const double lo = v.front(), hi = v.back(), spread = hi - lo;
       check(x, y, ratio, lo - 0.5 * spread, true);
