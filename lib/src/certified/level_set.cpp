@@ -629,7 +629,71 @@ Grad<Interval> centred_gradient(const ScalarField& f, const Box& b, Grad<Interva
   return g;
 }
 
-// `known`: F's gradient over the cell, if the cell's test took it already.
+// What try_trace needs of F's gradient over B' (u along the cell's graph
+// direction, v across it): F smooth there (its smooth-domain tests passed),
+// F_v of one sign sgn with |F_v| >= gv_min, and the curve's slope -F_u / F_v
+// (`signed_slope`) with |F_u| / |F_v| <= lipschitz (inf: not bounded).
+struct SlopeBound {
+  bool smooth = false;
+  int sgn = 0;
+  double lipschitz = inf, gv_min = 0.0;
+  Interval signed_slope = Interval::whole();
+};
+
+// The bound from one gradient enclosure g of a smooth box.
+SlopeBound slope_bound(const Grad<Interval>& g, bool swapped) {
+  SlopeBound b;
+  b.smooth = true;
+  const Interval fv = swapped ? g.dx : g.dy, fu = swapped ? g.dy : g.dx;
+  if (fv.contains_zero() || !fu.finite()) return b;
+  b.sgn = fv.lo > 0.0 ? 1 : -1;
+  b.lipschitz = fu.mag() / fv.mig() * (1.0 + 1e-12);
+  b.gv_min = fv.mig();
+  b.signed_slope = -(fu / fv);
+  return b;
+}
+
+// try_trace takes B' in parts where its whole-box gradient is too wide, up to
+// this extent (in cell sides): at most this many slabs on each side.
+constexpr double kPartsExtent = 4.0;
+
+// The bound over B' = the cell (gradient `j`) and slabs of at most the cell's
+// side below and above it (extent E each side), each slab with its own
+// smooth-domain test and gradient (natural, centred where F_v's sign is
+// unknown): the worst part's |F_u| / |F_v|. The parts cover B' exactly, so
+// this bounds the same slopes as one enclosure over B', and it is tighter: an
+// enclosure grows wider than F's range of gradients with its box (PAMINSA
+// κ <= 4 over a 2.5 mm cell: F_x's enclosure is 13 times its sampled range,
+// and B' is twice to five times as tall), so the parts' bound holds where the
+// whole box's fails, and such cells are traced instead of split in four
+// (docs/theory/level_sets.md). The cell lies in F's smooth domain (try_trace's
+// precondition).
+SlopeBound slope_over_parts(const ScalarField& f, const Box& cell, const Grad<Interval>& j, double extent, bool swapped) {
+  const double u0 = swapped ? cell.min.y : cell.min.x, u1 = swapped ? cell.max.y : cell.max.x;
+  const double v0 = swapped ? cell.min.x : cell.min.y, v1 = swapped ? cell.max.x : cell.max.y;
+  SlopeBound b = slope_bound(j, swapped);
+  const int n = std::max(1, static_cast<int>(std::ceil(extent / (u1 - u0) - 1e-9)));
+  for (int side = 0; side < 2; ++side) {
+    // n slabs of equal height from `from` to `to` (the ends exact, the cuts shared).
+    const double from = side == 0 ? v0 - extent : v1, to = side == 0 ? v0 : v1 + extent;
+    for (int k = 0; k < n && b.smooth && b.sgn != 0; ++k) {
+      const double va = k == 0 ? from : from + (to - from) * k / n, vb = k == n - 1 ? to : from + (to - from) * (k + 1) / n;
+      const Box part = swapped ? make_box(va, u0, vb, u1) : make_box(u0, va, u1, vb);
+      if (f.domain(part) != CellState::inside) return {};
+      const Grad<Interval> g = f.grad(part);
+      SlopeBound p = slope_bound(g, swapped);
+      if (p.sgn == 0) p = slope_bound(centred_gradient(f, part, g), swapped);
+      if (p.sgn != b.sgn) return SlopeBound{true};
+      b.lipschitz = std::max(b.lipschitz, p.lipschitz);
+      b.gv_min = std::min(b.gv_min, p.gv_min);
+      b.signed_slope = hull(b.signed_slope, p.signed_slope);
+    }
+  }
+  return b;
+}
+
+// The cell lies in F's smooth domain (refine tests it first). `known`: F's
+// gradient over the cell, if the cell's test took it already.
 CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double tau, const AreaWeight& weight,
                     bool envelopes_only, const std::optional<Grad<Interval>>& known = std::nullopt) {
   CellTrace t;
@@ -658,42 +722,35 @@ CellTrace try_trace(const ScalarField& f, double level, const Box& cell, double 
     return t;
   }
   const double du = swapped ? cell.height() : cell.width();
-  auto slope = [&](const Grad<Interval>& g) {
-    const Interval fv = swapped ? g.dx : g.dy, fu = swapped ? g.dy : g.dx;
-    if (fv.contains_zero() || !fu.finite()) return inf;
-    return fu.mag() / fv.mig() * (1.0 + 1e-12);
-  };
-  // Extent E of B' with L(B') du <= E: a few tries, each with the natural
-  // gradient and, where that fails, the centred one.
-  double lipschitz = slope(j);
-  double extent = 1.5 * lipschitz * du + 1e-12 * du;
-  Interval signed_slope = Interval::whole();
+  // Extent E of B' with L(B') du <= E: a few tries. Each takes B' whole (the
+  // natural gradient, then the centred one) and, where that fails with E of
+  // at most kPartsExtent du, B' in parts (slope_over_parts).
+  SlopeBound bound = slope_bound(j, swapped);
+  double extent = 1.5 * bound.lipschitz * du + 1e-12 * du;
   bool ok = false;
-  int sgn = 1;
-  double gv_min = 0.0;
   for (int attempt = 0; attempt < 4 && std::isfinite(extent); ++attempt) {
     const Box ext = swapped ? make_box(cell.min.x - extent, cell.min.y, cell.max.x + extent, cell.max.y)
                             : make_box(cell.min.x, cell.min.y - extent, cell.max.x, cell.max.y + extent);
-    if (f.domain(ext) != CellState::inside) return t;
-    Grad<Interval> je = f.grad(ext);
-    double le = slope(je);
-    if (!(le * du <= extent)) {
-      je = centred_gradient(f, ext, je);
-      le = slope(je);
+    bound = SlopeBound{};
+    if (f.domain(ext) == CellState::inside) {
+      const Grad<Interval> je = f.grad(ext);
+      bound = slope_bound(je, swapped);
+      if (!(bound.lipschitz * du <= extent)) bound = slope_bound(centred_gradient(f, ext, je), swapped);
     }
-    if (!std::isfinite(le)) return t;
-    if (le * du <= extent) {
-      lipschitz = le;
-      sgn = (swapped ? je.dx.lo : je.dy.lo) > 0.0 ? 1 : -1;
-      gv_min = (swapped ? je.dx : je.dy).mig();
-      signed_slope = -((swapped ? je.dy : je.dx) / (swapped ? je.dx : je.dy));
+    if (!(bound.lipschitz * du <= extent) && extent <= kPartsExtent * du) {
+      const SlopeBound parts = slope_over_parts(f, cell, j, extent, swapped);
+      if (parts.smooth && (!bound.smooth || parts.lipschitz < bound.lipschitz)) bound = parts;
+    }
+    if (!bound.smooth || !std::isfinite(bound.lipschitz)) return t;
+    if (bound.lipschitz * du <= extent) {
       ok = true;
       break;
     }
-    extent = 1.5 * le * du + 1e-12 * du;
+    extent = 1.5 * bound.lipschitz * du + 1e-12 * du;
   }
   if (!ok) return t;
-  Tracer tracer(f, level, cell, swapped, sgn, lipschitz, signed_slope, gv_min, extent, tau, weight, envelopes_only);
+  Tracer tracer(f, level, cell, swapped, bound.sgn, bound.lipschitz, bound.signed_slope, bound.gv_min, extent, tau, weight,
+                envelopes_only);
   tracer.run(t);
   return t;
 }

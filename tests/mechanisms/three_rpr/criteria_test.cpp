@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <numbers>
 #include <vector>
 #include <random>
 #include <type_traits>
@@ -608,6 +609,58 @@ TEST(ThreeRprConditioning, CertifiedVelocityRatioAreaContainsAGridEstimate) {
 // 1.5 s in release (40 s when it was written): PKMWS_HEAVY_GTESTS.
 TEST(ThreeRprConditioning, CertifiedConditionNumberAreaContainsAGridEstimate) {
   expect_bounds_contain_grid("three_rpr_paminsa_phi0_kappa4", "condition_number", 4.0, 1e-6);
+}
+
+// κ <= 4 of the PAMINSA at φ = 0 is star-shaped about the origin (checked on
+// every ray): its area is ½ ∫ r(θ)² dθ, r(θ) where eval's κ (an SVD) crosses 4
+// on the ray at θ, found by bisection. r² is smooth and periodic, so the
+// trapezoid rule converges geometrically: 256 and 512 rays agree to 1e-11.
+// The certified bounds, at 1e-6 (the 2.5 mm cells traced through B' in parts,
+// try_trace) and at 1e-9, hold it (it lies mid-way in both: 2.4e-7 and
+// 3.3e-10 from either bound, relative).
+TEST(ThreeRprConditioning, CertifiedConditionNumberBoundsHoldAStarShapedReference) {
+  const auto f = io::load_mechanism(dataset("three_rpr_paminsa_phi0_kappa4"));
+  const double length = criteria::three_rpr_characteristic_length(rpr(f), f.criteria);
+  const auto kappa = [&](double r, double t) {
+    return evaluation(f, {r * std::cos(t), r * std::sin(t)}, length).condition_number;
+  };
+  // The type-2 singular circle is at sqrt(R_b² + R_p² - 2 R_b R_p) = 0.25 m.
+  const double outer = 0.24;
+  const int rays = 512;
+  std::vector<double> r2(rays);
+  for (int k = 0; k < rays; ++k) {
+    const double t = 2.0 * std::numbers::pi * k / rays;
+    ASSERT_LT(kappa(0.0, t), 4.0);
+    ASSERT_GT(kappa(outer, t), 4.0);
+    double lo = 0.0, hi = outer;
+    for (int it = 0; it < 60; ++it) (kappa(0.5 * (lo + hi), t) <= 4.0 ? lo : hi) = 0.5 * (lo + hi);
+    r2[static_cast<std::size_t>(k)] = lo * hi;
+    for (int i = 1; i < 16; ++i) {
+      ASSERT_LE(kappa(lo * i / 16.0, t), 4.0) << t;
+      ASSERT_GT(kappa(hi + (outer - hi) * i / 16.0, t), 4.0) << t;
+    }
+  }
+  const auto area = [&](int step) {
+    double s = 0.0;
+    for (int k = 0; k < rays; k += step) s += r2[static_cast<std::size_t>(k)];
+    return 0.5 * s * (2.0 * std::numbers::pi * step / rays);
+  };
+  const double reference = area(1);
+  ASSERT_NEAR(area(2), reference, 1e-11 * reference);
+  for (double tolerance : {1e-6, 1e-9}) {
+    certified::LevelSetOptions o;
+    o.relative_tolerance = tolerance;
+    const auto r = criteria::limited_workspace(f, {{"condition_number", 4.0}}, o);
+    EXPECT_LE(r.region.area_lower, reference) << tolerance;
+    EXPECT_GE(r.region.area_upper, reference) << tolerance;
+    EXPECT_LE(r.region.width(), tolerance * reference) << tolerance;
+    // At 1e-6 the cover's 558 cells on the curve (2.5 mm) are traced
+    // themselves: 564 traced cells (B' whole alone: 1 008, most of those
+    // cells split in four).
+    if (tolerance == 1e-6) {
+      EXPECT_LT(r.detail.traced_cells, 700u);
+    }
+  }
 }
 
 }  // namespace
