@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 
@@ -1105,11 +1106,14 @@ Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const W
   const std::vector<Box> leaves = leaf_cells(pass.cover.undecided, co.window, co.base, co.max_depth);
 
   // τ: the allowed width per unit length of curve, from the cover's estimate
-  // of the area and of the curve length (undecided leaves x leaf size).
+  // of the area and of the curve length: undecided leaves x leaf size x π/4,
+  // the mean length of a straight curve per grid cell it crosses (a line at
+  // angle θ crosses (|cos θ| + |sin θ|) / h cells per unit length, 4 / (π h)
+  // on average over θ).
   double tau = tau_override;
   if (!(tau > 0.0)) {
     const double leaf = co.window.width() / (co.base * std::ldexp(1.0, co.max_depth));
-    const double length = std::max(1.0, static_cast<double>(leaves.size())) * leaf;
+    const double length = std::max(1.0, static_cast<double>(leaves.size())) * leaf * (std::numbers::pi / 4.0);
     const AreaWeight& w = options.weight;
     double inside_est = pass.cover.area_inside, undecided_est = pass.cover.area_undecided;
     if (!w.unit()) {
