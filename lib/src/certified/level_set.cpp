@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <numbers>
 #include <optional>
@@ -993,16 +994,45 @@ void add_inside(const WithinTest& within_test, const AreaWeight& weight, const B
   }
 }
 
+// The cover's tests of its finest cells that came out undecided, kept for
+// the refinement, whose first step would test each of those leaves again:
+// the one constraint left undecided (or -1) and its gradient over the leaf
+// (try_trace's start). Written by the cover's tasks, read after it.
+class LeafTests {
+ public:
+  struct Entry {
+    int active = -1;
+    std::optional<Grad<Interval>> grad;
+  };
+  void put(const Box& b, int active, const std::optional<Grad<Interval>>& grad) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    entries_[key(b)] = Entry{active, grad};
+  }
+  const Entry* find(const Box& b) const {
+    const auto it = entries_.find(key(b));
+    return it == entries_.end() ? nullptr : &it->second;
+  }
+
+ private:
+  // The leaves are the same boxes to the bit in both (cell_box and leaf_cells
+  // compute their sides alike); a box not found is tested again.
+  static std::array<double, 4> key(const Box& b) { return {b.min.x, b.min.y, b.max.x, b.max.y}; }
+  std::mutex mutex_;
+  std::map<std::array<double, 4>, Entry> entries_;
+};
+
+// `leaf`: the cover's test of this cell when it is one of its undecided
+// leaves (depth 0 of the first pass), instead of testing it again.
 void refine(const std::vector<Constraint>& cs, const WithinTest& within_test, const AreaWeight& weight, const Box& cell,
             int depth, int max_depth, double tau, double small_cell, bool trace, Budget& budget, LeafResult& r,
-            bool parallel = false) {
+            bool parallel = false, const LeafTests::Entry* leaf = nullptr) {
   if (budget.expired()) { r.undecided.push_back(cell); return; }  // valid: undecided is always allowed
-  ++r.tests;
+  if (!leaf) ++r.tests;
   const CellState in_w = within_test(cell);
   if (in_w == CellState::outside) return;  // S ⊆ W
-  int active = -1;
-  std::optional<Grad<Interval>> grad;
-  const CellState c = classify(cs, cell, &active, &grad);
+  int active = leaf ? leaf->active : -1;
+  std::optional<Grad<Interval>> grad = leaf ? leaf->grad : std::nullopt;
+  const CellState c = leaf ? CellState::undecided : classify(cs, cell, &active, &grad);
   if (c == CellState::inside) { add_inside(within_test, weight, cell, in_w, small_cell, r); return; }
   if (c == CellState::outside) return;
   if (trace && active >= 0) {
@@ -1094,13 +1124,20 @@ Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const W
   co.threads = options.threads;
   // S ⊆ W: a box outside W is outside S, whatever the fields (whose domain
   // may reach beyond W, e.g. past a stroke limit).
+  const double leaf_side = co.window.width() / (co.base * std::ldexp(1.0, co.max_depth));
+  LeafTests leaf_tests;
   pass.cover = certified::cover(
       [&](const Box& b) {
         const CellState in_w = within_test(b);
         if (in_w == CellState::outside) return CellState::outside;
         // A box of W with points on both sides is split without enclosures.
         if (in_w == CellState::inside && holds_both(cs, b)) return CellState::undecided;
-        return classify(cs, b);
+        if (!(b.width() <= leaf_side * (1.0 + 1e-9))) return classify(cs, b);
+        int active = -1;
+        std::optional<Grad<Interval>> grad;
+        const CellState c = classify(cs, b, &active, &grad);
+        if (c == CellState::undecided) leaf_tests.put(b, active, grad);
+        return c;
       },
       co);
   const std::vector<Box> leaves = leaf_cells(pass.cover.undecided, co.window, co.base, co.max_depth);
@@ -1112,8 +1149,7 @@ Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const W
   // on average over θ).
   double tau = tau_override;
   if (!(tau > 0.0)) {
-    const double leaf = co.window.width() / (co.base * std::ldexp(1.0, co.max_depth));
-    const double length = std::max(1.0, static_cast<double>(leaves.size())) * leaf * (std::numbers::pi / 4.0);
+    const double length = std::max(1.0, static_cast<double>(leaves.size())) * leaf_side * (std::numbers::pi / 4.0);
     const AreaWeight& w = options.weight;
     double inside_est = pass.cover.area_inside, undecided_est = pass.cover.area_undecided;
     if (!w.unit()) {
@@ -1135,7 +1171,7 @@ Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const W
   Budget budget(options, leaves.size());
   detail::for_each_block(policy, leaves.size(), leaves.size() * 64, [&](std::size_t k) {
     refine(cs, within_test, options.weight, leaves[k], 0, options.refine_depth, tau, pass.small_cell, options.trace, budget,
-           pass.per_leaf[k], detail::effective_threads(policy) > 1);
+           pass.per_leaf[k], detail::effective_threads(policy) > 1, leaf_tests.find(leaves[k]));
     budget.leaf_done();
   });
   pass.stopped = budget.stopped();
