@@ -616,8 +616,8 @@ TEST(ThreeRprConditioning, CertifiedConditionNumberAreaContainsAGridEstimate) {
 // on the ray at θ, found by bisection. r² is smooth and periodic, so the
 // trapezoid rule converges geometrically: 256 and 512 rays agree to 1e-11.
 // The certified bounds, at 1e-6 (the 2.5 mm cells traced through B' in parts,
-// try_trace) and at 1e-9, hold it (it lies mid-way in both: 2.4e-7 and
-// 3.3e-10 from either bound, relative).
+// try_trace) and at 1e-9, hold it (it lies mid-way in both: 3.1e-7 and
+// 4.1e-10 from either bound, relative).
 TEST(ThreeRprConditioning, CertifiedConditionNumberBoundsHoldAStarShapedReference) {
   const auto f = io::load_mechanism(dataset("three_rpr_paminsa_phi0_kappa4"));
   const double length = criteria::three_rpr_characteristic_length(rpr(f), f.criteria);
