@@ -40,8 +40,13 @@ void for_each_block(const ParallelPolicy& policy, std::size_t n_blocks, std::siz
         },
         oneapi::tbb::simple_partitioner());
   };
-  if (policy.threads <= 0) {
-    run();  // the default arena: every hardware thread
+  // K threads, K at least the hardware's: the default arena (every hardware
+  // thread; TBB would not give an arena more anyway). A task_arena of its own
+  // per call cost its set-up and its workers' joining on every call: with
+  // two threads on two cores the DexTAR cases' speed-up was 1.68-1.70x that
+  // way and is 1.76-1.81x this way (paired, same run).
+  if (policy.threads <= 0 || policy.threads >= std::max(1, oneapi::tbb::info::default_concurrency())) {
+    run();
   } else {
     oneapi::tbb::task_arena arena(threads);
     arena.execute(run);
