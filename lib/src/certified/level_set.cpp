@@ -674,11 +674,12 @@ SlopeBound slope_over_parts(const ScalarField& f, const Box& cell, const Grad<In
   const double u0 = swapped ? cell.min.y : cell.min.x, u1 = swapped ? cell.max.y : cell.max.x;
   const double v0 = swapped ? cell.min.x : cell.min.y, v1 = swapped ? cell.max.x : cell.max.y;
   SlopeBound b = slope_bound(j, swapped);
+  if (b.sgn == 0) return b;  // (try_trace chose v where the cell's F_v has a sign)
   const int n = std::max(1, static_cast<int>(std::ceil(extent / (u1 - u0) - 1e-9)));
   for (int side = 0; side < 2; ++side) {
     // n slabs of equal height from `from` to `to` (the ends exact, the cuts shared).
     const double from = side == 0 ? v0 - extent : v1, to = side == 0 ? v0 : v1 + extent;
-    for (int k = 0; k < n && b.smooth && b.sgn != 0; ++k) {
+    for (int k = 0; k < n; ++k) {
       const double va = k == 0 ? from : from + (to - from) * k / n, vb = k == n - 1 ? to : from + (to - from) * (k + 1) / n;
       const Box part = swapped ? make_box(va, u0, vb, u1) : make_box(u0, va, u1, vb);
       if (f.domain(part) != CellState::inside) return {};
