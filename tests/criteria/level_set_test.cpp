@@ -611,3 +611,4 @@ TEST(LevelSets, TransmissionLimitFormsAreTheCriterionsSetAndMeetTheCosSquaredFor
     EXPECT_GT(now.area_lower, 0.05 * ws.area()) << k.name << " " << k.threshold;
   }
 }
+

@@ -323,6 +323,7 @@ certified::LevelSetResult charted_sublevel_set(const std::vector<certified::Cons
     total.cell_tests += r.cell_tests;
     total.undecided_area += r.undecided_area;
     total.traced_width += r.traced_width;
+    total.retraced_leaves += r.retraced_leaves;
     total.stopped = total.stopped || r.stopped;
     for (std::size_t i = 0; i < r.curves.size(); ++i) {
       // The cuts' curves bound the chart's part inside W: not level curves.

@@ -162,6 +162,9 @@ struct LevelSetResult {
   double undecided_area = 0.0;         // part of the width from undecided cells
   double traced_width = 0.0;           // part of the width from traced cells
   double tolerance_per_length = 0.0;   // τ used (area per unit curve length)
+  /// Cover leaves traced again with τ / 4 where the first pass's traced
+  /// width missed the target (0: none; the retry then, if any, was a new pass).
+  std::uint64_t retraced_leaves = 0;
   /// Pieces for figures (no exact arithmetic): cells certified in S (before
   /// clipping to W), the traced cells' inner polygons, undecided cells.
   std::vector<geometry::Box> inside_boxes;
