@@ -19,6 +19,75 @@ HEADING = "## Certified level sets"
 SLOW = 0.020
 
 
+# The report's paragraph on where the time goes (its numbers: the run of the table).
+WHERE = (
+    "Where the time goes (docs/theory/level_sets.md): without charts, the DexTAR cases' undecided cells "
+    "sit where the level curve meets W's boundary tangentially (the field has a square-root singularity "
+    'there) and at the base joints, where every level curve ends; the charts trace both like any curve '
+    "(their cells square in the charts' own units, the base charts of radius R/6). What is left is the "
+    "traced cells' own cost: about one cell per cover leaf along each curve, each with a few certified "
+    'root brackets and interval jets. The pressure-angle limits are traced in their better conditioned '
+    'form (docs/theory/level_sets.md, "Transmission limits"): |cos ε| <= sin α_max as ±cos ε for α_max < '
+    '45° and |sin ε| >= cos α_max as -|det A| above, instead of cos²ε, whose gradient vanishes on the '
+    "singularity and where ε = 90°. Near those, cos²ε's level curves bunched and turned: for α <= 80° 1 "
+    "664 of the 3 006 cover leaves failed to trace (the extended box lost the sign of the field's slope) "
+    'and the cases took 0.14–0.20 s (1.7–1.9 s without charts); now 42–45 ms (0.25–0.28 s). The condition '
+    'numbers of the 3-RPR and 3-PRP (roots of a cubic) decide many of their boxes by the signs of the '
+    "cubic at one or two points before any enclosure (about a third of κ <= 4's), trace cells the natural "
+    "form of p'(λ) could not call smooth, from the roots' separation, and prove the roots' ends with p(μ) "
+    'in its mean-value form in (x, y) (the coefficients move together) (docs/theory/level_sets.md, '
+    "3-RPR). About PAMINSA's base joint points, where a leg has zero length and κ grows without bound, "
+    "the rows' norms (σ_min <= |row| <= σ_max) decide the boxes the roots' enclosures cannot. PAMINSA κ "
+    '<= 4, the last case to come under 100 ms, was limited by the width of its jets over a box, not their '
+    "cost: the field's Hessian over a 2.5 mm box was enclosed in [−1196, 549] where it is about −24, so "
+    'the curve was traced in 1.25 mm cells (2 016 of them). Its leg-angle rows are now formed from the '
+    "inverted point d/|d|² with closed-form derivatives, λ₂ is enclosed so that p'(λ₁) and p'(λ₃) come "
+    "from their factorisations, the roots' ends are bisected, and the root's gradient and Hessian are "
+    'formed from each other (docs/theory/level_sets.md, "Jets that keep their size"): the Hessian is now '
+    '[−243, 98], 1 070 cells are traced, and the time went 321 → 120 ms (1e-9: 876 → 572 ms). With the '
+    "side test it took 114 ms (session 25), and with B′ taken in parts where the whole box's gradient is "
+    'too wide (docs/theory/level_sets.md, "B′ in parts") 93 ms in this run (1e-9: 292 ms). Since session '
+    "23 a traced cell's pieces carry their unused allowance along the cell and take jets only from the "
+    "depth that served the cell's previous piece, and the cover is one level coarser for targets of 1e-7 "
+    'and wider (docs/theory/level_sets.md, layer (b), items 8–10). κ <= 4 gains from the first two '
+    "(1.10×) but not from the coarser cover: 590 of its 1 598 traces of 2.5 mm cells fail (the roots' "
+    "separation over the extended box B', up to 2.5 × 10 mm, or the sign of its slope) and are split; B' "
+    'taken in 2 or 4 pieces traces most of them (κ <= 4 1.11–1.22×), but on the PAMINSA reactions the '
+    "same costs 0.78–0.96× (their coarse traces cost 2.5 times a fine one's, and most piecewise tries "
+    "still fail), so it was not kept; the parts kept since (session 26) are slabs of at most a cell's "
+    'side, taken only where B′ whole fails and reaches at most 4 cell sides: 1 008 → 564 traced cells. '
+    "Instrumented on one core (session 27, 98 ms with the timers), κ <= 4 spends 36 ms in the cover's 6 "
+    "152 cell tests, 6 ms in the refinement's 686, 17 ms setting up its 564 traces (B′ whole 5 ms, B′ in "
+    'parts 13 ms) and 33 ms tracing them (23 ms in 3 199 piece jets, 8 ms in 5 019 certified root '
+    "brackets). At 1e-9 most of the time goes to the pieces' jets; a piece whose parent's jet missed the "
+    'target by more than 16 times is split without its own (33 of 63 800 such jets had passed). The '
+    "biglide's distance to the singularity is traced deeper where S leaves W while those boxes dominate "
+    'the width.'
+)
+
+# How to read the table against the one before it (its numbers: the run of the table).
+COMPARE = (
+    "Compare rows of one run: on this shared machine the same code's times drift between sessions by up "
+    'to 1.6× (the five-bar rows of 2026-12-02 and 2026-12-03, code unchanged), and within one run the '
+    'mirror cases (−1, +1) and (+1, −1), which do the same work, have differed by up to 1.36×. All rows '
+    'come from one run (2026-12-05, session 27), the two-thread column from it and 4 more runs of the '
+    "two-thread cases. Since the table before (session 25): session 26 traced κ <= 4's cells with B′ in "
+    "parts, took τ from the curve length × π/4 and started the refinement from the cover's leaf tests (κ "
+    '<= 4 114 → 93 ms on one thread; paired against the build before, 1.25×). Session 27 runs the '
+    "parallel calls in the default task arena where the threads asked for are at least the hardware's, "
+    'instead of an arena made per call (docs/theory/grid.md, "Determinism and threads"): paired in one '
+    'run, DexTAR α <= 80° on two threads went 1.68–1.70× → 1.76–1.81×. It also retries a missed target by '
+    "tracing the widest leaves again (docs/theory/level_sets.md, the retries): with τ's π/4 nine cases "
+    'missed 1e-9 in their first pass, and the retry had been a new pass, so that a run of session 27 '
+    'before this change read 229 ms for DexTAR (−1, −1) α <= 80° at 1e-9 and 289 ms for (+1, +1) (130 and '
+    "146 ms in the table before); now 139 and 149 ms, and the MOMA's α <= 15° 20 ms. No case needs a "
+    "retry at 1e-6. The other rows moved by the machine alone. A case's paired speed-up has moved by up "
+    'to 0.65 between runs (DexTAR (+1, +1) α <= 60°, session 24: 1.74–2.39×), hence the median over runs; '
+    'in a busy spell of this session three of five runs read 1.43–1.57× on every DexTAR case where the '
+    'calm runs read 1.7–2.0×.'
+)
+
+
 def seconds(b):
     unit = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
     return b["real_time"] * unit
@@ -155,60 +224,9 @@ def main():
         "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|",
         *rows,
         "",
-        "Where the time goes (docs/theory/level_sets.md): without charts, the DexTAR cases' undecided cells sit "
-        "where the level curve meets W's boundary tangentially (the field has a square-root singularity there) "
-        "and at the base joints, where every level curve ends; the charts trace both like any curve (their cells "
-        "square in the charts' own units, the base charts of radius R/6). What is left is the traced cells' own "
-        "cost: about one cell per cover leaf along each curve, each with a few certified root brackets and "
-        "interval jets. The pressure-angle limits are traced in their better conditioned form "
-        "(docs/theory/level_sets.md, \"Transmission limits\"): |cos ε| <= sin α_max as ±cos ε for α_max < 45° and "
-        "|sin ε| >= cos α_max as -|det A| above, instead of cos²ε, whose gradient vanishes on the singularity "
-        "and where ε = 90°. Near those, cos²ε's level curves bunched and turned: for α <= 80° 1 664 of the 3 006 "
-        "cover leaves failed to trace (the extended box lost the sign of the field's slope) and the cases took "
-        "0.14–0.20 s (1.7–1.9 s without charts); now 42–45 ms (0.25–0.28 s). The condition "
-        "numbers of the 3-RPR and 3-PRP (roots of a cubic) decide a third of their cells with a first-order "
-        "enclosure, trace cells the natural form of p'(λ) could not call smooth, from the roots' separation, "
-        "and prove the roots' ends with p(μ) in its mean-value form in (x, y) (the coefficients move together) "
-        "(docs/theory/level_sets.md, 3-RPR). About PAMINSA's base joint points, where a leg has zero length "
-        "and κ grows without bound, the rows' norms (σ_min <= |row| <= σ_max) decide the boxes the roots' "
-        "enclosures cannot. PAMINSA κ <= 4, the one case left above 100 ms, was limited by the width of its "
-        "jets over a box, not their cost: the field's Hessian over a 2.5 mm box was enclosed in [−1196, 549] "
-        "where it is about −24, so the curve was traced in 1.25 mm cells (2 016 of them). Its leg-angle rows "
-        "are now formed from the inverted point d/|d|² with closed-form derivatives, λ₂ is enclosed so that "
-        "p'(λ₁) and p'(λ₃) come from their factorisations, the roots' ends are bisected, and the root's "
-        "gradient and Hessian are formed from each other (docs/theory/level_sets.md, \"Jets that keep their "
-        "size\"): the Hessian is now [−243, 98], 1 070 cells are traced, and the time went 321 → 120 ms "
-        "(1e-9: 876 → 572 ms). Since session 23 a traced cell's pieces carry their unused allowance along the "
-        "cell and take jets only from the depth that served the cell's previous piece, and the cover is one level "
-        "coarser for targets of 1e-7 and wider (docs/theory/level_sets.md, layer (b), items 8–10). κ <= 4 gains "
-        "from the first two (1.10×) but not from the coarser cover: 590 of its 1 598 traces of 2.5 mm cells fail "
-        "(the roots' separation over the extended box B', up to 2.5 × 10 mm, or the sign of its slope) and are "
-        "split; B' taken in 2 or 4 pieces traces most of them (κ <= 4 1.11–1.22×), but on the PAMINSA reactions "
-        "the same costs 0.78–0.96× (their coarse traces cost 2.5 times a fine one's, and most piecewise tries "
-        "still fail), so it is not kept. Profiled with the coarser cover (one core) κ <= 4 spends 43 ms in the "
-        "cover and 69 ms in the traced cells. At 1e-9 most of "
-        "the time goes to the pieces' jets; a piece whose parent's jet missed the target by more than 16 times is split "
-        "without its own (33 of 63 800 such jets had passed). The biglide's distance to the singularity is "
-        "traced deeper where S leaves W while those boxes dominate the width.",
+        WHERE,
         "",
-        "Compare rows of one run: on this shared machine the same code's times drift between sessions by up to "
-        "1.6× (the five-bar rows of 2026-12-02 and 2026-12-03, code unchanged), and within one run the mirror "
-        "cases (−1, +1) and (+1, −1), which do the same work, have differed by up to 1.36×. All rows come from "
-        "one run (2026-12-05, session 24). The one-thread work did not change in session 24 (the bounds are the "
-        "same to the last bit or two, from sums taken in blocks; κ <= 4 paired against the build before at 1e-6 "
-        "and 1e-9: 1.00×), so the one-thread times differ from the table before (session 23) by the machine "
-        "alone. What changed is the work that had run on one thread: the summary's exact region operations on "
-        "the cells across W's boundary (the straddling boxes and the traced cells' envelopes clipped to W) now "
-        "run as tasks over fixed blocks of pieces, the traced cells' envelope polygons are built per block of "
-        "leaves, and for the distance to the singularity the tubes' parts are built per block of pieces, their "
-        "two unions and the two subtractions from W′'s regions run as two tasks each (docs/theory/level_sets.md, \"Threads\"). "
-        "The two-thread speed-ups, median over the runs: DexTAR 1.51–1.84× (were 1.39–1.87×), the biglide's "
-        "distance to the singularity 1.37× (was 1.00×: its two unions, 20 and 17 ms on one thread, are now "
-        "concurrent, and run slower so on this machine), PAMINSA 1.84–1.97×, 3-PRP κ <= 2 1.83×. A case's paired "
-        "speed-up moved by up to 0.65 between runs (DexTAR (+1, +1) α <= 60°: 1.74–2.39×), hence the median "
-        "over runs. The cases below 1.7× are the biglide's tubes (two CGAL unions on two "
-        "threads; a split into four half-unions measured the same) and two DexTAR rows whose runs spread "
-        "1.46–1.97×.",
+        COMPARE,
     ]
     update_report(a.report, HEADING, "\n".join(lines))
     print(f"level_sets.py: wrote {n} cases to {a.report}")
