@@ -1185,6 +1185,25 @@ Pass first_pass(const std::vector<Constraint>& cs, const Region& within, const W
   return pass;
 }
 
+// Refines each of `cells` `levels` levels deep with τ = `tau`, as a task of
+// its own (its leaves' refinement in parallel too where `nested`), into its
+// own slot of `out`. Returns true if the deadline stopped it.
+bool refine_each(const Pass& pass, const std::vector<Constraint>& cs, const WithinTest& within_test,
+                 const LevelSetOptions& options, const std::vector<Box>& cells, int levels, double tau, bool nested,
+                 std::vector<LeafResult>& out) {
+  out.assign(cells.size(), LeafResult{});
+  detail::ParallelPolicy policy;
+  policy.threads = options.threads;
+  policy.serial_threshold = 8;
+  Budget budget(options, cells.size());
+  detail::for_each_block(policy, cells.size(), cells.size() * 64, [&](std::size_t i) {
+    refine(cs, within_test, options.weight, cells[i], 0, levels, tau, pass.small_cell, options.trace, budget, out[i],
+           nested && detail::effective_threads(policy) > 1);
+    budget.leaf_done();
+  });
+  return budget.stopped();
+}
+
 // Refines the cells a pass left undecided `levels` levels further, with the
 // same τ (its traced and decided cells stay): the retry when undecided cells
 // dominate the width. Each undecided cell is a task of its own (a few leaves
@@ -1197,19 +1216,13 @@ void deepen(Pass& pass, const std::vector<Constraint>& cs, const WithinTest& wit
     for (const Box& b : pass.per_leaf[k].undecided) cells.emplace_back(k, b);
     pass.per_leaf[k].undecided.clear();
   }
-  std::vector<LeafResult> parts(cells.size());
-  detail::ParallelPolicy policy;
-  policy.threads = options.threads;
-  policy.serial_threshold = 8;
-  Budget budget(options, cells.size());
-  detail::for_each_block(policy, cells.size(), cells.size() * 64, [&](std::size_t i) {
-    refine(cs, within_test, options.weight, cells[i].second, 0, levels, pass.tau, pass.small_cell, options.trace, budget,
-           parts[i]);
-    budget.leaf_done();
-  });
+  std::vector<Box> boxes;
+  boxes.reserve(cells.size());
+  for (const auto& c : cells) boxes.push_back(c.second);
+  std::vector<LeafResult> parts;
+  pass.stopped = refine_each(pass, cs, within_test, options, boxes, levels, pass.tau, false, parts) || pass.stopped;
   for (std::size_t i = 0; i < cells.size(); ++i) append(pass.per_leaf[cells[i].first], std::move(parts[i]));
   pass.depth += levels;
-  pass.stopped = pass.stopped || budget.stopped();
 }
 
 // The retry when the traced cells' width misses the target (τ was estimated
@@ -1252,21 +1265,16 @@ std::size_t retrace_widest(Pass& pass, const std::vector<Constraint>& cs, const 
     left -= l.gain;
   }
   if (left > 0.0 || 2 * chosen.size() >= traced.size()) return 0;
-  std::vector<LeafResult> redone(chosen.size());
-  detail::ParallelPolicy policy;
-  policy.threads = options.threads;
-  policy.serial_threshold = 8;
-  Budget budget(options, chosen.size());
-  detail::for_each_block(policy, chosen.size(), chosen.size() * 64, [&](std::size_t i) {
-    refine(cs, within_test, options.weight, pass.leaves[chosen[i]], 0, options.refine_depth, kFactor * pass.tau,
-           pass.small_cell, options.trace, budget, redone[i], detail::effective_threads(policy) > 1);
-    budget.leaf_done();
-  });
+  std::vector<Box> boxes;
+  boxes.reserve(chosen.size());
+  for (const std::size_t k : chosen) boxes.push_back(pass.leaves[k]);
+  std::vector<LeafResult> redone;
+  pass.stopped = refine_each(pass, cs, within_test, options, boxes, options.refine_depth, kFactor * pass.tau, true, redone) ||
+                 pass.stopped;
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     redone[i].tests += pass.per_leaf[chosen[i]].tests;  // the first trace's tests were made too
     pass.per_leaf[chosen[i]] = std::move(redone[i]);
   }
-  pass.stopped = pass.stopped || budget.stopped();
   return chosen.size();
 }
 
