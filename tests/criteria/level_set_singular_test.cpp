@@ -171,12 +171,7 @@ TEST(LevelSetsSingular, MomaConditionNumberAtTheRodsSingularityAgainstAGrid) {
 // and the cells-only run's.
 TEST(LevelSetsSingular, TheWidestLeavesAreTracedAgainWhereTheTracesMissTheTarget) {
   const io::MechanismFile f = io::load_mechanism(test::dataset("moma_criteria_m1_gm5_l180_alpha15"));
-  certified::LevelSetOptions o;
-  o.relative_tolerance = 1e-9;
-  o.threads = 1;
-  const auto one = criteria::limited_workspace(f, criteria::file_limits(f), o);
-  o.threads = 2;
-  const auto two = criteria::limited_workspace(f, criteria::file_limits(f), o);
+  const auto one = test::limited_on(f, 1e-9, 1), two = test::limited_on(f, 1e-9, 2);
   EXPECT_GT(one.detail.retraced_leaves, 0u);
   EXPECT_LT(2 * one.detail.retraced_leaves, one.detail.traced_cells);
   EXPECT_LE(one.region.width(), 1e-9 * one.region.area_upper);

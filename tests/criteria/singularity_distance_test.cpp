@@ -25,6 +25,7 @@
 #include "pkmws/io/mechanism_file.hpp"
 #include "support/cli_runner.hpp"
 #include "support/fixtures.hpp"
+#include "support/limited.hpp"
 #include "support/load_error.hpp"
 
 namespace {
@@ -436,12 +437,7 @@ TEST(SingularityDistance, RandomThreeRprAgainstSampledSingularCurve) {
 
 TEST(SingularityDistance, OneAndTwoThreadsGiveIdenticalBounds) {
   const io::MechanismFile f = from_json(paminsa(25.0, 0.02));
-  certified::LevelSetOptions o;
-  o.relative_tolerance = 1e-4;
-  o.threads = 1;
-  const auto one = criteria::limited_workspace(f, criteria::file_limits(f), o);
-  o.threads = 2;
-  const auto two = criteria::limited_workspace(f, criteria::file_limits(f), o);
+  const auto one = test::limited_on(f, 1e-4, 1), two = test::limited_on(f, 1e-4, 2);
   EXPECT_EQ(one.region.area_lower, two.region.area_lower);
   EXPECT_EQ(one.region.area_upper, two.region.area_upper);
   EXPECT_EQ(one.singular_curves.size(), two.singular_curves.size());

@@ -15,4 +15,12 @@ inline criteria::LimitedWorkspace limited(const io::MechanismFile& f, double tol
   return criteria::limited_workspace(f, criteria::file_limits(f), o);
 }
 
+// Traced, on `threads` threads (the file's limits, default options otherwise).
+inline criteria::LimitedWorkspace limited_on(const io::MechanismFile& f, double tol, int threads) {
+  certified::LevelSetOptions o;
+  o.relative_tolerance = tol;
+  o.threads = threads;
+  return criteria::limited_workspace(f, criteria::file_limits(f), o);
+}
+
 }  // namespace pkmws::test
