@@ -611,4 +611,3 @@ TEST(LevelSets, TransmissionLimitFormsAreTheCriterionsSetAndMeetTheCosSquaredFor
     EXPECT_GT(now.area_lower, 0.05 * ws.area()) << k.name << " " << k.threshold;
   }
 }
-
