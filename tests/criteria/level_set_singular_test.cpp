@@ -30,6 +30,15 @@ void expect_meet(const certified::CertifiedRegion& a, const certified::Certified
   EXPECT_LE(b.area_lower, a.area_upper);
 }
 
+// The bounds hold the area of an n² grid over b to the grid's error: the
+// cells the boundary meets, k × (b's perimeter) / h of them, of area h².
+void expect_hold_grid(const certified::CertifiedRegion& r, double grid, const Box& b, int n, double k) {
+  const double h = std::max(b.width(), b.height()) / n;
+  const double slack = k * 2.0 * (b.width() + b.height()) * h;
+  EXPECT_LE(r.area_lower, grid + slack);
+  EXPECT_GE(r.area_upper, grid - slack);
+}
+
 // y-intervals where both ratios hold, by scanning and bisecting the surrogate's
 // sign changes to rounding; their strips cut W exactly.
 double biglide_reference(const io::MechanismFile& f) {
@@ -114,10 +123,7 @@ TEST(LevelSetsSingular, PaminsaReactionAcrossTheSingularCircleAgainstAGrid) {
     return true;
   });
   // Grid error: cells met by the boundary, generously 4 x perimeter / h cells of area h².
-  const double h = std::max(b.width(), b.height()) / n;
-  const double slack = 4.0 * 2.0 * (b.width() + b.height()) * h;
-  EXPECT_LE(r.region.area_lower, grid + slack);
-  EXPECT_GE(r.region.area_upper, grid - slack);
+  expect_hold_grid(r.region, grid, b, n, 4.0);
 }
 
 // φ = 25°: the reaction's 0/0 points (where every level curve ends) leave a
@@ -155,10 +161,7 @@ TEST(LevelSetsSingular, MomaConditionNumberAtTheRodsSingularityAgainstAGrid) {
     return std::isfinite(k) && k <= limit;
   });
   // Grid error: about (boundary length) x h; the boundary is taken as twice the box's perimeter.
-  const double h = std::max(b.width(), b.height()) / n;
-  const double slack = 2.0 * 2.0 * (b.width() + b.height()) * h;
-  EXPECT_LE(r.region.area_lower, grid + slack);
-  EXPECT_GE(r.region.area_upper, grid - slack);
+  expect_hold_grid(r.region, grid, b, n, 2.0);
 }
 
 // The retry when the traced cells miss the target (their τ is estimated
@@ -197,10 +200,7 @@ TEST(LevelSetsSingular, TheWidestLeavesAreTracedAgainWhereTheTracesMissTheTarget
     }
     return true;
   });
-  const double h = std::max(b.width(), b.height()) / n;
-  const double slack = 2.0 * 2.0 * (b.width() + b.height()) * h;
-  EXPECT_LE(one.region.area_lower, grid + slack);
-  EXPECT_GE(one.region.area_upper, grid - slack);
+  expect_hold_grid(one.region, grid, b, n, 2.0);
   EXPECT_LT(std::abs(grid - one.region.area_upper), 0.05 * one.region.area_upper);  // the grid is a real check
 }
 

@@ -1560,14 +1560,14 @@ LevelSetResult sublevel_set(const std::vector<Constraint>& constraints, const Re
   // up to 16 levels deeper (each level costs the same few cells). Where the
   // kind is not known yet, a one-level step measures it.
   const auto target = [&] { return target_width(options, r.region.area_upper); };
-  const auto width = [&] { return r.region.area_upper - r.region.area_lower; };
+  const auto width = [&] { return r.region.width(); };
   if (!options.trace || !options.retries || r.stopped || width() <= target()) return final_result(pass, std::move(r));
   if (r.traced_width > 0.5 * width()) {
     const std::size_t retraced = retrace_widest(pass, constraints, within_test, options, width(), target());
     if (retraced > 0) {
       LevelSetResult again = summarize(pass, within, within_test, options.weight, options.within_disks);
       again.retraced_leaves = retraced;
-      if (again.stopped || again.region.area_upper - again.region.area_lower <= target()) return final_result(pass, std::move(again));
+      if (again.stopped || again.region.width() <= target()) return final_result(pass, std::move(again));
     }
     const double tau = r.tolerance_per_length * 0.5 * target() / width();
     const Pass again = first_pass(constraints, within, within_test, options, tau);
